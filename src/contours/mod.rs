@@ -1,0 +1,576 @@
+//! `ContourSet`: closed polygonal rings over a vertex arena (DESIGN layer 2).
+//!
+//! Connectivity is kept apart from coordinates: each vertex has `prev`/`next` links, so
+//! splicing two rings at a crossing (seed 003, §2.3) is O(1). Each vertex carries the id
+//! of the ring it belongs to; after a split only one of the two rings is relabelled, the
+//! "pseudo-local" tracking of seed 003, §2.4.
+//!
+//! Conventions (stated once, here):
+//! - the region lies on the left of every ring, in the algebraic sense of
+//!   [`crate::geometry::orient`] on image coordinates (x right, y down): outer rings have
+//!   positive signed area, hole rings negative;
+//! - rings are simple, have at least 3 vertices, and no two edges anywhere cross or touch;
+//! - no edge is longer than [`ContourSet::reach`], which is what makes the broad-phase
+//!   search local (seed 003, §3: "constraining the maximum edge length").
+
+pub mod vertex_bins;
+
+use crate::geometry::{
+    folds_back, orient, segment_intersection, signed_area2, winding_number, Aabb, Point,
+    SegmentIntersection,
+};
+pub use vertex_bins::{BroadPhase, VertexBins};
+
+pub(crate) const NIL: u32 = u32::MAX;
+
+/// Handle of a vertex in a [`ContourSet`].
+pub type VertexId = u32;
+
+/// Id of a ring. Ids are never reused within one set.
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
+#[serde(transparent)]
+pub struct ContourId(pub u32);
+
+impl std::fmt::Display for ContourId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}", self.0)
+    }
+}
+
+/// Why a ring could not be added.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum RingError {
+    #[error("a ring needs at least 3 vertices, got {0}")]
+    TooFewVertices(usize),
+    #[error("ring has a non-finite coordinate")]
+    NotFinite,
+    #[error("ring edge of length {len} exceeds the edge bound {bound}")]
+    EdgeTooLong { len: f64, bound: f64 },
+    #[error("ring has zero area")]
+    ZeroArea,
+    #[error("ring crosses or touches itself or another ring")]
+    Intersects,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Ring {
+    /// Any live vertex of the ring.
+    pub anchor: u32,
+    pub len: u32,
+    /// Twice the signed area, kept up to date incrementally.
+    pub area2: f64,
+}
+
+/// A set of disjoint, simple, oriented polygonal rings bounding a region.
+#[derive(Clone, Debug)]
+pub struct ContourSet {
+    pub(crate) pos: Vec<Point>,
+    pub(crate) next: Vec<u32>,
+    pub(crate) prev: Vec<u32>,
+    /// Ring id of each vertex; `NIL` for a free slot.
+    pub(crate) label: Vec<u32>,
+    pub(crate) free: Vec<u32>,
+    pub(crate) rings: Vec<Option<Ring>>,
+    pub(crate) live_rings: usize,
+    pub(crate) bins: VertexBins,
+    pub(crate) max_edge: f64,
+    /// Longest edge the bins must account for: `max_edge`, or more if an edge longer than
+    /// it ever had to stay (never in practice; kept so correctness never depends on it).
+    pub(crate) reach: f64,
+    pub(crate) domain: Aabb,
+    /// Per-vertex stamps for walks that must not visit twice.
+    pub(crate) mark: Vec<u32>,
+    pub(crate) stamp: u32,
+    pub(crate) scratch: Vec<u32>,
+}
+
+impl ContourSet {
+    /// An empty set whose rings are expected to live in `domain` (the image rectangle)
+    /// with edges no longer than `max_edge` pixels.
+    ///
+    /// # Panics
+    /// If `max_edge` is not a positive finite number (a programming error: callers
+    /// validate user parameters first).
+    pub fn new(domain: Aabb, max_edge: f64) -> Self {
+        assert!(
+            max_edge.is_finite() && max_edge > 0.0,
+            "edge bound must be positive, got {max_edge}"
+        );
+        ContourSet {
+            pos: Vec::new(),
+            next: Vec::new(),
+            prev: Vec::new(),
+            label: Vec::new(),
+            free: Vec::new(),
+            rings: Vec::new(),
+            live_rings: 0,
+            bins: VertexBins::new(domain, max_edge),
+            max_edge,
+            reach: max_edge,
+            domain,
+            mark: Vec::new(),
+            stamp: 0,
+            scratch: Vec::new(),
+        }
+    }
+
+    /// The edge-length bound every edge respects.
+    pub fn max_edge(&self) -> f64 {
+        self.max_edge
+    }
+
+    /// The domain the bins cover.
+    pub fn domain(&self) -> Aabb {
+        self.domain
+    }
+
+    /// The distance the broad phase searches around a motion (≥ `max_edge`).
+    pub fn reach(&self) -> f64 {
+        self.reach
+    }
+
+    /// Rebuilds the bins for a new edge bound (a pyramid level change). Existing edges
+    /// longer than the new bound stay, and the search reach grows to cover them, until
+    /// remeshing splits them.
+    pub fn set_max_edge(&mut self, max_edge: f64) {
+        assert!(
+            max_edge.is_finite() && max_edge > 0.0,
+            "edge bound must be positive, got {max_edge}"
+        );
+        self.max_edge = max_edge;
+        let longest = self
+            .vertices()
+            .map(|v| self.pos[v as usize].dist(self.pos[self.next[v as usize] as usize]))
+            .fold(0.0, f64::max);
+        self.reach = max_edge.max(longest);
+        self.bins = VertexBins::new(self.domain, self.reach);
+        for v in 0..self.pos.len() as u32 {
+            if self.label[v as usize] != NIL {
+                self.bins.insert(v, self.pos[v as usize]);
+            }
+        }
+    }
+
+    /// Adds a ring through `points` in order, keeping their orientation: counter-clockwise
+    /// in the algebraic sense (positive area) for an outer ring, the other way for a hole.
+    pub fn add_ring(&mut self, points: &[Point]) -> Result<ContourId, RingError> {
+        let n = points.len();
+        if n < 3 {
+            return Err(RingError::TooFewVertices(n));
+        }
+        if points.iter().any(|p| !p.is_finite()) {
+            return Err(RingError::NotFinite);
+        }
+        for i in 0..n {
+            let len = points[i].dist(points[(i + 1) % n]);
+            if len > self.max_edge {
+                return Err(RingError::EdgeTooLong {
+                    len,
+                    bound: self.max_edge,
+                });
+            }
+        }
+        let area2 = signed_area2(points);
+        if area2 == 0.0 {
+            return Err(RingError::ZeroArea);
+        }
+        if self.ring_would_intersect(points) {
+            return Err(RingError::Intersects);
+        }
+        let id = self.rings.len() as u32;
+        let first = self.alloc(points[0], id);
+        let mut last = first;
+        for &p in &points[1..] {
+            let v = self.alloc(p, id);
+            self.next[last as usize] = v;
+            self.prev[v as usize] = last;
+            last = v;
+        }
+        self.next[last as usize] = first;
+        self.prev[first as usize] = last;
+        self.rings.push(Some(Ring {
+            anchor: first,
+            len: n as u32,
+            area2,
+        }));
+        self.live_rings += 1;
+        Ok(ContourId(id))
+    }
+
+    fn ring_would_intersect(&self, points: &[Point]) -> bool {
+        let n = points.len();
+        let mut cand = Vec::new();
+        for i in 0..n {
+            let (a0, a1) = (points[i], points[(i + 1) % n]);
+            // Against its own other edges: neighbours may only share their common vertex.
+            for j in i + 1..n {
+                let (b0, b1) = (points[j], points[(j + 1) % n]);
+                let bad = if j == i + 1 {
+                    a0 == a1 || folds_back(a1, a0, b1)
+                } else if i == 0 && j == n - 1 {
+                    folds_back(a0, a1, b0)
+                } else {
+                    segment_intersection(a0, a1, b0, b1) != SegmentIntersection::None
+                };
+                if bad {
+                    return true;
+                }
+            }
+            let b = Aabb::of(&[a0, a1]).expand(self.reach);
+            self.bins.query(&b, &mut cand);
+            for &c in &cand {
+                let (b0, b1) = (
+                    self.pos[c as usize],
+                    self.pos[self.next[c as usize] as usize],
+                );
+                if segment_intersection(a0, a1, b0, b1) != SegmentIntersection::None {
+                    return true;
+                }
+            }
+        }
+        // A ring with no crossing may still enclose or sit inside another one: that is
+        // fine as long as orientations nest, which `sanity_check` verifies; callers that
+        // build nested rings state holes explicitly.
+        false
+    }
+
+    pub(crate) fn alloc(&mut self, p: Point, label: u32) -> u32 {
+        let v = if let Some(v) = self.free.pop() {
+            self.pos[v as usize] = p;
+            self.label[v as usize] = label;
+            v
+        } else {
+            self.pos.push(p);
+            self.next.push(NIL);
+            self.prev.push(NIL);
+            self.label.push(label);
+            self.mark.push(0);
+            (self.pos.len() - 1) as u32
+        };
+        self.bins.insert(v, p);
+        v
+    }
+
+    /// Frees a vertex slot (links are the caller's business).
+    pub(crate) fn release(&mut self, v: u32) {
+        self.bins.remove(v);
+        self.label[v as usize] = NIL;
+        self.free.push(v);
+    }
+
+    pub(crate) fn ring(&self, id: u32) -> &Ring {
+        self.rings[id as usize].as_ref().expect("live ring")
+    }
+    pub(crate) fn ring_mut(&mut self, id: u32) -> &mut Ring {
+        self.rings[id as usize].as_mut().expect("live ring")
+    }
+
+    pub(crate) fn next_stamp(&mut self) -> u32 {
+        self.stamp = self.stamp.wrapping_add(1);
+        if self.stamp == 0 {
+            self.mark.iter_mut().for_each(|m| *m = 0);
+            self.stamp = 1;
+        }
+        self.stamp
+    }
+
+    // ---- read access -------------------------------------------------------------------
+
+    /// Position of a live vertex.
+    pub fn position(&self, v: VertexId) -> Point {
+        self.pos[v as usize]
+    }
+    pub fn next(&self, v: VertexId) -> VertexId {
+        self.next[v as usize]
+    }
+    pub fn prev(&self, v: VertexId) -> VertexId {
+        self.prev[v as usize]
+    }
+    pub fn is_alive(&self, v: VertexId) -> bool {
+        (v as usize) < self.label.len() && self.label[v as usize] != NIL
+    }
+    /// The ring a live vertex belongs to.
+    pub fn contour_of(&self, v: VertexId) -> ContourId {
+        ContourId(self.label[v as usize])
+    }
+    /// Number of live vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.pos.len() - self.free.len()
+    }
+    /// Number of rings.
+    pub fn contour_count(&self) -> usize {
+        self.live_rings
+    }
+    /// Upper bound (exclusive) of vertex ids ever handed out.
+    pub fn vertex_capacity(&self) -> usize {
+        self.pos.len()
+    }
+    /// All live vertices, in id order.
+    pub fn vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
+        (0..self.pos.len() as u32).filter(move |&v| self.label[v as usize] != NIL)
+    }
+    /// Ids of all rings, ascending.
+    pub fn contour_ids(&self) -> impl Iterator<Item = ContourId> + '_ {
+        self.rings
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| r.is_some())
+            .map(|(i, _)| ContourId(i as u32))
+    }
+    pub fn contains(&self, id: ContourId) -> bool {
+        matches!(self.rings.get(id.0 as usize), Some(Some(_)))
+    }
+    /// The vertices of a ring in order, starting anywhere.
+    pub fn ring_vertices(&self, id: ContourId) -> Vec<VertexId> {
+        let r = self.ring(id.0);
+        let mut out = Vec::with_capacity(r.len as usize);
+        let mut v = r.anchor;
+        loop {
+            out.push(v);
+            v = self.next[v as usize];
+            if v == r.anchor || out.len() > self.pos.len() {
+                break;
+            }
+        }
+        out
+    }
+    /// The positions of a ring in order.
+    pub fn ring_points(&self, id: ContourId) -> Vec<Point> {
+        self.ring_vertices(id)
+            .into_iter()
+            .map(|v| self.pos[v as usize])
+            .collect()
+    }
+    /// Signed area of a ring (negative for holes).
+    pub fn signed_area(&self, id: ContourId) -> f64 {
+        0.5 * self.ring(id.0).area2
+    }
+    /// Number of vertices of a ring.
+    pub fn ring_len(&self, id: ContourId) -> usize {
+        self.ring(id.0).len as usize
+    }
+    /// Whether a ring bounds a hole.
+    pub fn is_hole(&self, id: ContourId) -> bool {
+        !self.loop_is_outer(self.ring(id.0).anchor, self.ring(id.0).area2)
+    }
+
+    /// Whether the loop through `anchor` (with twice-area `area2` summed in floats) runs
+    /// with the region on its left around the outside, i.e. bounds an outer region. The
+    /// float sum decides unless it is within rounding of zero (a sliver); then the exact
+    /// orientation at the lowest-leftmost vertex does, which is never zero for a simple
+    /// polygon.
+    pub(crate) fn loop_is_outer(&self, anchor: u32, area2: f64) -> bool {
+        let a = self.pos[anchor as usize];
+        let scale = 1.0 + a.x.abs().max(a.y.abs());
+        if area2.abs() > 1e-9 * scale * scale {
+            return area2 > 0.0;
+        }
+        let mut best = anchor;
+        let mut w = self.next[anchor as usize];
+        while w != anchor {
+            let (pw, pb) = (self.pos[w as usize], self.pos[best as usize]);
+            if (pw.x, pw.y) < (pb.x, pb.y) {
+                best = w;
+            }
+            w = self.next[w as usize];
+        }
+        let b = best as usize;
+        orient(
+            self.pos[self.prev[b] as usize],
+            self.pos[b],
+            self.pos[self.next[b] as usize],
+        ) > 0.0
+    }
+    /// Total signed area of the region (outer areas minus holes).
+    pub fn region_area(&self) -> f64 {
+        self.rings.iter().flatten().map(|r| 0.5 * r.area2).sum()
+    }
+    /// Whether `p` lies in the region (sum of the rings' winding numbers is 1 inside).
+    /// Exact unless `p` is on a ring.
+    pub fn region_contains(&self, p: Point) -> bool {
+        self.contour_ids()
+            .map(|id| winding_number(&self.ring_points(id), p))
+            .sum::<i32>()
+            > 0
+    }
+
+    /// For every ring, the ring directly enclosing it (`None` for an outermost ring).
+    /// Rings do not cross, so one vertex of a ring decides which rings contain it.
+    pub fn parents(&self) -> Vec<(ContourId, Option<ContourId>)> {
+        let ids: Vec<ContourId> = self.contour_ids().collect();
+        let pts: Vec<Vec<Point>> = ids.iter().map(|&id| self.ring_points(id)).collect();
+        let boxes: Vec<Aabb> = pts.iter().map(|p| Aabb::of(p)).collect();
+        let areas: Vec<f64> = ids.iter().map(|&id| self.signed_area(id).abs()).collect();
+        ids.iter()
+            .enumerate()
+            .map(|(i, &id)| {
+                let probe = pts[i][0];
+                let parent = (0..ids.len())
+                    .filter(|&j| j != i && areas[j] > areas[i] && boxes[j].contains(probe))
+                    .filter(|&j| winding_number(&pts[j], probe) != 0)
+                    .min_by(|&a, &b| areas[a].total_cmp(&areas[b]))
+                    .map(|j| ids[j]);
+                (id, parent)
+            })
+            .collect()
+    }
+
+    /// Candidate edges (by start vertex) that may meet box `b`, from the broad phase.
+    pub fn edges_near(&self, b: &Aabb, out: &mut Vec<VertexId>) {
+        self.bins.query(&b.expand(self.reach), out);
+    }
+
+    // ---- invariants ----------------------------------------------------------------------
+
+    /// Checks every invariant of the set and says which one fails: links, ring lengths,
+    /// labels, stored areas, edge bound, bins against positions, no two edges crossing or
+    /// touching, and orientations that nest (outer rings at even depth, holes at odd).
+    pub fn sanity_check(&self) -> Result<(), String> {
+        let mut seen = 0usize;
+        let mut ring_count = 0usize;
+        for (id, r) in self.rings.iter().enumerate() {
+            let Some(r) = r else { continue };
+            ring_count += 1;
+            if r.len < 3 {
+                return Err(format!("ring {id} has {} vertices", r.len));
+            }
+            let mut v = r.anchor;
+            let mut pts = Vec::with_capacity(r.len as usize);
+            loop {
+                if self.label.get(v as usize) != Some(&(id as u32)) {
+                    return Err(format!(
+                        "vertex {v} in ring {id} labelled {:?}",
+                        self.label.get(v as usize)
+                    ));
+                }
+                let n = self.next[v as usize];
+                if self.prev[n as usize] != v {
+                    return Err(format!("prev(next({v})) != {v}"));
+                }
+                pts.push(self.pos[v as usize]);
+                v = n;
+                if v == r.anchor {
+                    break;
+                }
+                if pts.len() > r.len as usize {
+                    return Err(format!("ring {id} longer than its stored length {}", r.len));
+                }
+            }
+            if pts.len() != r.len as usize {
+                return Err(format!(
+                    "ring {id} has {} vertices, stored {}",
+                    pts.len(),
+                    r.len
+                ));
+            }
+            seen += pts.len();
+            let a2 = signed_area2(&pts);
+            let scale = pts
+                .iter()
+                .map(|p| p.x.abs().max(p.y.abs()))
+                .fold(1.0, f64::max);
+            if (a2 - r.area2).abs() > 1e-7 * scale * scale * (1.0 + pts.len() as f64).sqrt() {
+                return Err(format!("ring {id} area2 {a2} but stored {}", r.area2));
+            }
+        }
+        if ring_count != self.live_rings {
+            return Err(format!("{ring_count} rings, counted {}", self.live_rings));
+        }
+        if seen != self.vertex_count() {
+            return Err(format!(
+                "{} live vertices but rings hold {seen}",
+                self.vertex_count()
+            ));
+        }
+        if self.bins.len() != seen {
+            return Err(format!(
+                "bins hold {} vertices, rings {seen}",
+                self.bins.len()
+            ));
+        }
+        let mut cand = Vec::new();
+        for v in self.vertices() {
+            let (a0, a1) = (
+                self.pos[v as usize],
+                self.pos[self.next[v as usize] as usize],
+            );
+            if !self.bins.finds(v, a0) {
+                return Err(format!("vertex {v} not in the bin of its position"));
+            }
+            if a0.dist(a1) > self.reach {
+                return Err(format!(
+                    "edge {v} longer ({}) than the reach {}",
+                    a0.dist(a1),
+                    self.reach
+                ));
+            }
+            self.edges_near(&Aabb::of(&[a0, a1]), &mut cand);
+            for &c in &cand {
+                if c <= v {
+                    continue;
+                }
+                let cn = self.next[c as usize];
+                let (b0, b1) = (self.pos[c as usize], self.pos[cn as usize]);
+                if let Some(why) = edge_pair_fault(v, self.next[v as usize], a0, a1, c, cn, b0, b1)
+                {
+                    return Err(format!("edges {v} and {c}: {why}"));
+                }
+            }
+        }
+        // Orientation: a ring inside an odd number of others must be a hole.
+        let ids: Vec<ContourId> = self.contour_ids().collect();
+        let pts: Vec<Vec<Point>> = ids.iter().map(|&id| self.ring_points(id)).collect();
+        for (i, &id) in ids.iter().enumerate() {
+            let probe = pts[i][0];
+            let depth = (0..ids.len())
+                .filter(|&j| j != i && winding_number(&pts[j], probe) != 0)
+                .count();
+            if self.is_hole(id) != (depth % 2 == 1) {
+                let kind = if self.is_hole(id) {
+                    "hole"
+                } else {
+                    "outer ring"
+                };
+                return Err(format!("ring {id} is a {kind} at nesting depth {depth}"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// What is wrong with two distinct edges a0→a1 (start `va`, end `na`) and b0→b1, if
+/// anything: edges sharing a vertex may meet only there; others may not meet at all.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn edge_pair_fault(
+    va: u32,
+    na: u32,
+    a0: Point,
+    a1: Point,
+    vb: u32,
+    nb: u32,
+    b0: Point,
+    b1: Point,
+) -> Option<&'static str> {
+    let hit = segment_intersection(a0, a1, b0, b1);
+    let shared = na == vb || nb == va;
+    if shared {
+        if na == vb && nb == va {
+            return Some("two-vertex ring");
+        }
+        // They meet at the shared vertex; anything more is an overlap.
+        let (s, x, y) = if na == vb { (a1, a0, b1) } else { (a0, a1, b0) };
+        if orient(s, x, y) == 0.0 && (x - s).dot(y - s) > 0.0 {
+            return Some("adjacent edges overlap");
+        }
+        None
+    } else {
+        match hit {
+            SegmentIntersection::None => None,
+            SegmentIntersection::Proper { .. } => Some("cross"),
+            SegmentIntersection::Touch => Some("touch"),
+            SegmentIntersection::Overlap => Some("overlap"),
+        }
+    }
+}

@@ -1,0 +1,242 @@
+//! Vertex bins: the broad phase of seed 003, §3 ("the edges in this area can be
+//! efficiently retrieved by storing the vertices in bins indexed by their location").
+//!
+//! A dense uniform grid over a domain (the image, usually) whose cells are at least as
+//! large as the edge-length bound; each cell holds an intrusive doubly linked list of its
+//! vertices, so moving a vertex between cells is O(1) and a query allocates nothing.
+//! Positions outside the domain are clamped into the border cells: such vertices are
+//! still found (the clamp is monotone), only less efficiently.
+//!
+//! Because every edge is at most `reach` long, an edge that meets a box B starts at a
+//! vertex inside B grown by `reach`: querying that grown box and taking each found
+//! vertex's outgoing edge yields every edge that can meet B.
+
+use crate::geometry::{Aabb, Point};
+
+const NIL: u32 = u32::MAX;
+/// Upper bound on the number of cells, so a tiny edge bound on a huge image stays small.
+const MAX_CELLS: usize = 1 << 22;
+
+/// A broad phase over vertex positions: which vertices may lie in a box.
+pub trait BroadPhase {
+    /// Registers vertex `v` at `p`.
+    fn insert(&mut self, v: u32, p: Point);
+    /// Forgets vertex `v`.
+    fn remove(&mut self, v: u32);
+    /// Vertex `v` moved to `p`.
+    fn update(&mut self, v: u32, p: Point);
+    /// Clears `out` and fills it with a superset of the vertices whose position lies in `b`.
+    fn query(&self, b: &Aabb, out: &mut Vec<u32>);
+    /// Whether `v` is registered at a place where a query for `p` would find it.
+    fn finds(&self, v: u32, p: Point) -> bool;
+    /// Number of registered vertices.
+    fn len(&self) -> usize;
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// Uniform grid of vertex lists.
+#[derive(Clone, Debug)]
+pub struct VertexBins {
+    origin: Point,
+    inv_cell: f64,
+    nx: usize,
+    ny: usize,
+    head: Vec<u32>,
+    link_next: Vec<u32>,
+    link_prev: Vec<u32>,
+    cell_of: Vec<u32>,
+    count: usize,
+}
+
+impl VertexBins {
+    /// Bins over `domain` with cells of at least `min_cell` (the edge-length bound).
+    pub fn new(domain: Aabb, min_cell: f64) -> Self {
+        let w = (domain.max.x - domain.min.x).max(1.0);
+        let h = (domain.max.y - domain.min.y).max(1.0);
+        let mut cell = min_cell.max(1e-9);
+        while (w / cell).ceil() * (h / cell).ceil() > MAX_CELLS as f64 {
+            cell *= 1.5;
+        }
+        let nx = ((w / cell).ceil() as usize).max(1);
+        let ny = ((h / cell).ceil() as usize).max(1);
+        VertexBins {
+            origin: domain.min,
+            inv_cell: 1.0 / cell,
+            nx,
+            ny,
+            head: vec![NIL; nx * ny],
+            link_next: Vec::new(),
+            link_prev: Vec::new(),
+            cell_of: Vec::new(),
+            count: 0,
+        }
+    }
+
+    /// Side of one cell, pixels.
+    pub fn cell_size(&self) -> f64 {
+        1.0 / self.inv_cell
+    }
+
+    #[inline]
+    fn ix(&self, x: f64) -> usize {
+        let f = ((x - self.origin.x) * self.inv_cell).floor();
+        if f <= 0.0 || f.is_nan() {
+            0
+        } else {
+            (f as usize).min(self.nx - 1)
+        }
+    }
+    #[inline]
+    fn iy(&self, y: f64) -> usize {
+        let f = ((y - self.origin.y) * self.inv_cell).floor();
+        if f <= 0.0 || f.is_nan() {
+            0
+        } else {
+            (f as usize).min(self.ny - 1)
+        }
+    }
+    #[inline]
+    fn cell(&self, p: Point) -> u32 {
+        (self.iy(p.y) * self.nx + self.ix(p.x)) as u32
+    }
+
+    fn link(&mut self, v: u32, c: u32) {
+        let h = self.head[c as usize];
+        self.link_next[v as usize] = h;
+        self.link_prev[v as usize] = NIL;
+        if h != NIL {
+            self.link_prev[h as usize] = v;
+        }
+        self.head[c as usize] = v;
+        self.cell_of[v as usize] = c;
+    }
+
+    fn unlink(&mut self, v: u32) {
+        let c = self.cell_of[v as usize];
+        let (n, p) = (self.link_next[v as usize], self.link_prev[v as usize]);
+        if p != NIL {
+            self.link_next[p as usize] = n;
+        } else {
+            self.head[c as usize] = n;
+        }
+        if n != NIL {
+            self.link_prev[n as usize] = p;
+        }
+        self.cell_of[v as usize] = NIL;
+    }
+}
+
+impl BroadPhase for VertexBins {
+    fn insert(&mut self, v: u32, p: Point) {
+        let i = v as usize;
+        if i >= self.cell_of.len() {
+            self.cell_of.resize(i + 1, NIL);
+            self.link_next.resize(i + 1, NIL);
+            self.link_prev.resize(i + 1, NIL);
+        }
+        debug_assert_eq!(self.cell_of[i], NIL, "vertex {v} inserted twice");
+        let c = self.cell(p);
+        self.link(v, c);
+        self.count += 1;
+    }
+
+    fn remove(&mut self, v: u32) {
+        debug_assert_ne!(self.cell_of[v as usize], NIL);
+        self.unlink(v);
+        self.count -= 1;
+    }
+
+    #[inline]
+    fn update(&mut self, v: u32, p: Point) {
+        let c = self.cell(p);
+        if self.cell_of[v as usize] != c {
+            self.unlink(v);
+            self.link(v, c);
+        }
+    }
+
+    fn query(&self, b: &Aabb, out: &mut Vec<u32>) {
+        out.clear();
+        let (x0, x1) = (self.ix(b.min.x), self.ix(b.max.x));
+        let (y0, y1) = (self.iy(b.min.y), self.iy(b.max.y));
+        for y in y0..=y1 {
+            let row = y * self.nx;
+            for x in x0..=x1 {
+                let mut v = self.head[row + x];
+                while v != NIL {
+                    out.push(v);
+                    v = self.link_next[v as usize];
+                }
+            }
+        }
+    }
+
+    fn finds(&self, v: u32, p: Point) -> bool {
+        let c = self.cell(p);
+        if self.cell_of.get(v as usize) != Some(&c) {
+            return false;
+        }
+        let mut u = self.head[c as usize];
+        while u != NIL {
+            if u == v {
+                return true;
+            }
+            u = self.link_next[u as usize];
+        }
+        false
+    }
+
+    fn len(&self) -> usize {
+        self.count
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn query_finds_inserted_and_moved_vertices() {
+        let dom = Aabb {
+            min: Point::new(0.0, 0.0),
+            max: Point::new(100.0, 100.0),
+        };
+        let mut b = VertexBins::new(dom, 10.0);
+        b.insert(0, Point::new(5.0, 5.0));
+        b.insert(1, Point::new(55.0, 5.0));
+        b.insert(2, Point::new(-50.0, 500.0)); // outside: clamped into a border cell
+        let mut out = Vec::new();
+        b.query(
+            &Aabb {
+                min: Point::new(0.0, 0.0),
+                max: Point::new(9.0, 9.0),
+            },
+            &mut out,
+        );
+        assert_eq!(out, vec![0]);
+        b.update(0, Point::new(57.0, 7.0));
+        b.query(
+            &Aabb {
+                min: Point::new(50.0, 0.0),
+                max: Point::new(59.0, 9.0),
+            },
+            &mut out,
+        );
+        out.sort();
+        assert_eq!(out, vec![0, 1]);
+        b.query(
+            &Aabb {
+                min: Point::new(-60.0, 450.0),
+                max: Point::new(-40.0, 550.0),
+            },
+            &mut out,
+        );
+        assert_eq!(out, vec![2]);
+        b.remove(1);
+        assert!(!b.finds(1, Point::new(55.0, 5.0)));
+        assert!(b.finds(0, Point::new(57.0, 7.0)));
+        assert_eq!(b.len(), 2);
+    }
+}

@@ -1,0 +1,24 @@
+//! # topocontour
+//!
+//! Polygonal active contours in 2D that change topology correctly: contours grow, split,
+//! merge and open or close holes, and always stay simple, oriented and non-crossing.
+//!
+//! The heart is [`ContourSet::move_vertex`], the motion-region topology correction of
+//! seed 003 (`shared/seeds/003_…`): one vertex moves at a time, and the rings afterwards
+//! bound exactly (R ∪ M⁺) − M⁻.
+//!
+//! Layers (each uses only those above it):
+//! - [`geometry`]: points, exact orientation, segment intersection;
+//! - [`contours`]: the ring arena [`ContourSet`] and its broad phase [`contours::VertexBins`];
+//! - [`topology`]: motion regions, Directives 1 and 2, topology events.
+//!
+//! Cargo features: none yet; the desktop app will sit behind a default `gui` feature.
+
+pub mod check;
+pub mod contours;
+pub mod geometry;
+pub mod topology;
+
+pub use contours::{ContourId, ContourSet, RingError, VertexId};
+pub use geometry::{Aabb, Point};
+pub use topology::{Degeneracy, MotionRegion, MoveError, TopologyEvent};

@@ -1,0 +1,453 @@
+//! Topology correction by motion regions (seed 003; DESIGN layer 3).
+//!
+//! [`ContourSet::move_vertex`] moves one vertex and leaves the rings bounding exactly
+//! (R ∪ M⁺) − M⁻ (Theorem 3): find the crossings of the new portion c' with the rest of
+//! the boundary through the vertex bins ([`directive1::find_crossings`]), splice and
+//! delete at them (Directive 1), delete rings inside the motion region (Directive 2), then
+//! relabel pseudo-locally and report [`TopologyEvent`]s.
+//!
+//! Choices the paper leaves open, made here:
+//! - **Degenerate moves are rejected.** The paper assumes c' never touches the boundary
+//!   (§2.2, constraint 4). A move whose new edges would touch a vertex or an edge, overlap
+//!   an edge collinearly, fold back on a neighbouring edge, put q on p or n, or whose
+//!   crossings fall within a tiny distance (1e-9 × coordinate scale) of other geometry or
+//!   between nearly parallel edges, returns [`MoveError::Degenerate`] and changes nothing.
+//!   An evolving contour simply tries a slightly different move next frame (the evolver
+//!   retries with a shortened step), which is what a user watching expects: nothing jumps.
+//! - **Long moves are searched over their bounding box.** The broad phase is queried over
+//!   the bounding box of c' grown by the edge bound, which contains the whole motion
+//!   region, so a move of any length is corrected exactly in one step against the big
+//!   quadrilateral. New edges longer than the bound are then split by inserting vertices,
+//!   which changes no geometry.
+//! - **Removing a vertex is a motion**: c' = p→n, M the triangle (p, o, n).
+
+pub mod directive1;
+pub mod directive2;
+pub mod events;
+pub mod motion_region;
+
+use crate::contours::{ContourSet, Ring, VertexId, NIL};
+use crate::geometry::{folds_back, segment_intersection, Aabb, Point, SegmentIntersection};
+use directive1::{find_crossings, guard_crossings, Crossing, NewEdge};
+pub use events::TopologyEvent;
+use events::{assign_ids, NewLoop, OldRing};
+pub use motion_region::MotionRegion;
+
+/// Why a move was refused (the set is unchanged).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum Degeneracy {
+    #[error("the new position coincides with a neighbour")]
+    OnNeighbour,
+    #[error("a new edge would touch the boundary")]
+    Touch,
+    #[error("a new edge would overlap an edge collinearly")]
+    Overlap,
+    #[error("the motion region is flat where a crossing lies")]
+    FlatRegion,
+    #[error("a crossing between nearly parallel edges")]
+    NearlyParallel,
+    #[error("a crossing too close to other geometry")]
+    Near,
+}
+
+/// Why a topology operation did nothing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum MoveError {
+    #[error("vertex {0} does not exist")]
+    NoVertex(VertexId),
+    #[error("position is not finite")]
+    NotFinite,
+    #[error("degenerate motion: {0}")]
+    Degenerate(#[from] Degeneracy),
+    #[error("a ring cannot have fewer than 3 vertices")]
+    TooFewVertices,
+    #[error("the resulting edge would exceed the edge bound")]
+    EdgeTooLong,
+    #[error("parameter along the edge must lie strictly between 0 and 1")]
+    BadParameter,
+}
+
+impl ContourSet {
+    /// Moves vertex `v` to `to` and corrects the rings (seed 003). Returns the topology
+    /// events the move caused; on error nothing changed. `v` may be gone afterwards (its
+    /// ring vanished, or it lay on a deleted stretch): check [`ContourSet::is_alive`].
+    pub fn move_vertex(&mut self, v: VertexId, to: Point) -> Result<Vec<TopologyEvent>, MoveError> {
+        if !self.is_alive(v) {
+            return Err(MoveError::NoVertex(v));
+        }
+        if !to.is_finite() {
+            return Err(MoveError::NotFinite);
+        }
+        if to == self.pos[v as usize] {
+            return Ok(Vec::new());
+        }
+        self.replace_vertex(v, Some(to))
+    }
+
+    /// Removes vertex `v`, joining its neighbours by a straight edge: the motion of `v`
+    /// onto that edge, corrected like any other move.
+    pub fn remove_vertex(&mut self, v: VertexId) -> Result<Vec<TopologyEvent>, MoveError> {
+        if !self.is_alive(v) {
+            return Err(MoveError::NoVertex(v));
+        }
+        if self.ring(self.label[v as usize]).len <= 3 {
+            return Err(MoveError::TooFewVertices);
+        }
+        let (p, n) = (
+            self.pos[self.prev[v as usize] as usize],
+            self.pos[self.next[v as usize] as usize],
+        );
+        if p.dist(n) > self.max_edge {
+            return Err(MoveError::EdgeTooLong);
+        }
+        self.replace_vertex(v, None)
+    }
+
+    /// Inserts a vertex on the edge from `a` to its successor, at parameter `t` in (0, 1).
+    /// The geometry does not change (up to rounding, which is checked).
+    pub fn insert_vertex(&mut self, a: VertexId, t: f64) -> Result<VertexId, MoveError> {
+        if !self.is_alive(a) {
+            return Err(MoveError::NoVertex(a));
+        }
+        if !(t > 0.0 && t < 1.0) {
+            return Err(MoveError::BadParameter);
+        }
+        let b = self.next[a as usize];
+        let (pa, pb) = (self.pos[a as usize], self.pos[b as usize]);
+        let m = pa.lerp(pb, t);
+        if m == pa || m == pb || folds_back(m, pa, pb) {
+            return Err(Degeneracy::OnNeighbour.into());
+        }
+        // The rounded point may sit a hair off the edge. That changes nothing for a ring of
+        // real size, but could turn a sliver ring inside out: refuse to touch slivers.
+        let scale = 1.0 + pa.x.abs().max(pa.y.abs()).max(pb.x.abs()).max(pb.y.abs());
+        if self.ring(self.label[a as usize]).area2.abs() < 1e-6 * scale * scale {
+            return Err(Degeneracy::Near.into());
+        }
+        let mut cand = std::mem::take(&mut self.scratch);
+        self.edges_near(&Aabb::of(&[pa, pb]), &mut cand);
+        let mut fault = None;
+        for &c in &cand {
+            if c == a {
+                continue;
+            }
+            let cn = self.next[c as usize];
+            let (c0, c1) = (self.pos[c as usize], self.pos[cn as usize]);
+            for (s0id, s0, s1id, s1) in [(a, pa, NIL, m), (NIL, m, b, pb)] {
+                let shared = if c == s0id || cn == s0id {
+                    Some((s0, s1, if c == s0id { c1 } else { c0 }))
+                } else if c == s1id || cn == s1id {
+                    Some((s1, s0, if c == s1id { c1 } else { c0 }))
+                } else {
+                    None
+                };
+                let bad = match shared {
+                    Some((at, s_other, e_other)) => folds_back(at, s_other, e_other),
+                    None => segment_intersection(s0, s1, c0, c1) != SegmentIntersection::None,
+                };
+                if bad {
+                    fault = Some(Degeneracy::Near);
+                }
+            }
+        }
+        self.scratch = cand;
+        if let Some(f) = fault {
+            return Err(f.into());
+        }
+        let label = self.label[a as usize];
+        let x = self.alloc(m, label);
+        self.next[a as usize] = x;
+        self.prev[x as usize] = a;
+        self.next[x as usize] = b;
+        self.prev[b as usize] = x;
+        let r = self.ring_mut(label);
+        r.len += 1;
+        r.area2 += pa.cross(m) + m.cross(pb) - pa.cross(pb);
+        Ok(x)
+    }
+
+    fn replace_vertex(
+        &mut self,
+        v: u32,
+        to: Option<Point>,
+    ) -> Result<Vec<TopologyEvent>, MoveError> {
+        let (pid, nid) = (self.prev[v as usize], self.next[v as usize]);
+        let (p, o, n) = (
+            self.pos[pid as usize],
+            self.pos[v as usize],
+            self.pos[nid as usize],
+        );
+        let label = self.label[v as usize];
+        if let Some(q) = to {
+            if q == p || q == n {
+                return Err(Degeneracy::OnNeighbour.into());
+            }
+            // The two new edges must not fold onto each other at q.
+            if folds_back(q, p, n) {
+                return Err(Degeneracy::Overlap.into());
+            }
+        }
+        let mr = MotionRegion::new(p, o, n, to);
+        let new_edges_buf: [NewEdge; 2];
+        let new_edges: &[NewEdge] = match to {
+            Some(q) => {
+                new_edges_buf = [(pid, p, v, q), (v, q, nid, n)];
+                &new_edges_buf
+            }
+            None => {
+                new_edges_buf = [(pid, p, nid, n), (pid, p, nid, n)];
+                &new_edges_buf[..1]
+            }
+        };
+        let (path, k) = mr.new_path();
+        let mut cand = std::mem::take(&mut self.scratch);
+        self.edges_near(&Aabb::of(&path[..k]), &mut cand);
+
+        let mut crossings: Vec<Crossing> = Vec::new();
+        let found = find_crossings(self, &mr, new_edges, &cand, [pid, v], &mut crossings)
+            .and_then(|()| guard_crossings(self, new_edges, &crossings, &cand, v));
+        if let Err(e) = found {
+            self.scratch = cand;
+            return Err(e.into());
+        }
+
+        // Directive 2 candidates, decided before anything changes.
+        let mut involved: Vec<u32> = vec![label];
+        for c in &crossings {
+            let l = self.label[c.edge as usize];
+            if !involved.contains(&l) {
+                involved.push(l);
+            }
+        }
+        let mut inside: Vec<(u32, i32)> = Vec::new();
+        self.rings_inside(&mr, &cand, &involved, &mut inside);
+        let moving_inside = if crossings.is_empty() {
+            self.moving_ring_inside(&mr, v, self.ring(label).len)
+        } else {
+            None
+        };
+        self.scratch = cand;
+
+        let old: Vec<OldRing> = involved
+            .iter()
+            .map(|&id| {
+                let r = self.ring(id);
+                OldRing {
+                    id,
+                    len: r.len,
+                    outer: self.loop_is_outer(r.anchor, r.area2),
+                }
+            })
+            .collect();
+
+        // The move itself: c' replaces c.
+        let delta2 = match to {
+            Some(q) => p.cross(q) + q.cross(n) - p.cross(o) - o.cross(n),
+            None => p.cross(n) - p.cross(o) - o.cross(n),
+        };
+        {
+            let r = self.ring_mut(label);
+            r.area2 += delta2;
+            if to.is_none() {
+                r.len -= 1;
+                r.anchor = pid;
+            }
+        }
+        let moved = match to {
+            Some(q) => {
+                self.pos[v as usize] = q;
+                crate::contours::BroadPhase::update(&mut self.bins, v, q);
+                Some(v)
+            }
+            None => {
+                self.next[pid as usize] = nid;
+                self.prev[nid as usize] = pid;
+                self.release(v);
+                None
+            }
+        };
+
+        let mut events = Vec::new();
+        let mut fresh_edges: Vec<u32> = Vec::new();
+        if crossings.is_empty() {
+            if let Some(w) = moving_inside {
+                self.delete_ring(label);
+                let outer = old[0].outer;
+                events.push(deletion_event(label, outer, w, None));
+            } else if let Some(v) = moved {
+                fresh_edges.extend([pid, v]);
+            }
+        } else {
+            let kept = self.splice_crossings(pid, moved, &mut crossings, label);
+            let loops = self.collect_loops(&kept);
+            self.settle_loops(loops, &old, &mut events);
+            for &x in &kept {
+                if self.is_alive(x) {
+                    fresh_edges.extend([self.prev[x as usize], x]);
+                }
+            }
+            if let Some(v) = moved.filter(|&v| self.is_alive(v)) {
+                fresh_edges.extend([self.prev[v as usize], v]);
+            }
+        }
+        let survivor = moved
+            .filter(|&v| self.is_alive(v))
+            .map(|v| self.label[v as usize]);
+        for (l, w) in inside {
+            let outer = !self.is_hole(crate::contours::ContourId(l));
+            self.delete_ring(l);
+            events.push(deletion_event(l, outer, w, survivor));
+        }
+        self.split_long_edges(&fresh_edges);
+        Ok(events)
+    }
+
+    /// Walks each loop holding a kept crossing vertex once.
+    fn collect_loops(&mut self, kept: &[u32]) -> Vec<NewLoop> {
+        let stamp = self.next_stamp();
+        let mut loops = Vec::new();
+        for &x in kept {
+            if self.mark[x as usize] == stamp {
+                continue;
+            }
+            let mut lp = NewLoop {
+                anchor: x,
+                len: 0,
+                area2: 0.0,
+                outer: true,
+                labels: Vec::new(),
+                id: NIL,
+            };
+            let mut w = x;
+            loop {
+                self.mark[w as usize] = stamp;
+                let nw = self.next[w as usize];
+                lp.len += 1;
+                lp.area2 += self.pos[w as usize].cross(self.pos[nw as usize]);
+                let l = self.label[w as usize];
+                if !lp.labels.contains(&l) {
+                    lp.labels.push(l);
+                }
+                w = nw;
+                if w == x {
+                    break;
+                }
+            }
+            lp.outer = self.loop_is_outer(x, lp.area2);
+            loops.push(lp);
+        }
+        loops
+    }
+
+    /// Replaces the ring entries of the rings that took part by the surviving loops.
+    fn settle_loops(
+        &mut self,
+        mut loops: Vec<NewLoop>,
+        old: &[OldRing],
+        events: &mut Vec<TopologyEvent>,
+    ) {
+        for r in old {
+            if self.rings[r.id as usize].take().is_some() {
+                self.live_rings -= 1;
+            }
+        }
+        let mut next_id = self.rings.len() as u32;
+        assign_ids(
+            &mut loops,
+            old,
+            || {
+                next_id += 1;
+                next_id - 1
+            },
+            events,
+        );
+        for lp in loops {
+            if lp.id as usize >= self.rings.len() {
+                self.rings.resize(lp.id as usize + 1, None);
+            }
+            if lp.labels != [lp.id] {
+                let mut w = lp.anchor;
+                loop {
+                    self.label[w as usize] = lp.id;
+                    w = self.next[w as usize];
+                    if w == lp.anchor {
+                        break;
+                    }
+                }
+            }
+            self.rings[lp.id as usize] = Some(Ring {
+                anchor: lp.anchor,
+                len: lp.len,
+                area2: lp.area2,
+            });
+            self.live_rings += 1;
+        }
+    }
+
+    /// Deletes a whole ring (Directive 2).
+    fn delete_ring(&mut self, id: u32) {
+        let r = self.rings[id as usize].take().expect("live ring");
+        self.live_rings -= 1;
+        let mut w = r.anchor;
+        loop {
+            let nw = self.next[w as usize];
+            self.release(w);
+            w = nw;
+            if w == r.anchor {
+                break;
+            }
+        }
+    }
+
+    /// Splits edges (given by start vertex) longer than the edge bound into equal parts.
+    fn split_long_edges(&mut self, starts: &[u32]) {
+        for &a in starts {
+            if !self.is_alive(a) {
+                continue;
+            }
+            let b = self.next[a as usize];
+            let len = self.pos[a as usize].dist(self.pos[b as usize]);
+            if len <= self.max_edge {
+                continue;
+            }
+            let parts = (len / self.max_edge).ceil() as usize;
+            let mut cursor = a;
+            for i in 1..parts {
+                // Each insertion splits the remaining stretch cursor→b.
+                let t = 1.0 / (parts - i + 1) as f64;
+                match self.insert_vertex(cursor, t) {
+                    Ok(x) => cursor = x,
+                    Err(_) => break,
+                }
+            }
+            // Should a split be refused (rounding next to other geometry), the broad phase
+            // widens its reach so that correctness never rests on the bound.
+            let mut w = a;
+            while w != b {
+                let nw = self.next[w as usize];
+                self.reach = self
+                    .reach
+                    .max(self.pos[w as usize].dist(self.pos[nw as usize]));
+                w = nw;
+            }
+        }
+    }
+}
+
+/// The event for ring `id` deleted by Directive 2 with M's winding `w` over it.
+fn deletion_event(id: u32, outer: bool, w: i32, survivor: Option<u32>) -> TopologyEvent {
+    use crate::contours::ContourId;
+    match (outer, w > 0, survivor) {
+        (true, true, Some(s)) if s != id => TopologyEvent::Merge {
+            into: ContourId(s),
+            absorbed: ContourId(id),
+        },
+        (true, _, _) => TopologyEvent::Vanished {
+            contour: ContourId(id),
+        },
+        (false, _, _) => TopologyEvent::HoleGone {
+            hole: ContourId(id),
+            into: None,
+        },
+    }
+}
