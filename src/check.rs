@@ -96,6 +96,23 @@ fn near_loop(pts: &[Point], x: Point) -> bool {
     (0..pts.len()).any(|i| point_segment_distance(x, pts[i], pts[(i + 1) % pts.len()]) < NEAR)
 }
 
+/// Whether segment a–b meets box `r` (brute force, for checking the broad phase).
+pub fn segment_meets_box(a: Point, b: Point, r: &Aabb) -> bool {
+    if r.contains(a) || r.contains(b) {
+        return true;
+    }
+    let c = [
+        r.min,
+        Point::new(r.max.x, r.min.y),
+        r.max,
+        Point::new(r.min.x, r.max.y),
+    ];
+    (0..4).any(|i| {
+        crate::geometry::segment_intersection(a, b, c[i], c[(i + 1) % 4])
+            != crate::geometry::SegmentIntersection::None
+    })
+}
+
 /// Every ring's points.
 pub fn snapshot(set: &ContourSet) -> Rings {
     let pts: Vec<Vec<Point>> = set.contour_ids().map(|id| set.ring_points(id)).collect();
@@ -402,8 +419,9 @@ pub fn run_random_moves(
             let mut near = Vec::new();
             set.edges_near(&b, &mut near);
             for w in set.vertices() {
-                let e = Aabb::of(&[set.position(w), set.position(set.next(w))]);
-                if e.overlaps(&b) && !near.contains(&w) {
+                if segment_meets_box(set.position(w), set.position(set.next(w)), &b)
+                    && !near.contains(&w)
+                {
                     return Err(format!("seed {seed} step {step}: bins missed edge {w}"));
                 }
             }

@@ -312,8 +312,8 @@ mod tests {
         assert_eq!(winding_number(&sq, p(1., 1.)), 1);
         assert_eq!(winding_number(&sq, p(3., 1.)), 0);
         let bow = [p(0., 0.), p(2., 2.), p(2., 0.), p(0., 2.)];
-        assert_eq!(winding_number(&bow, p(1., 0.5)), -1);
-        assert_eq!(winding_number(&bow, p(1., 1.5)), 1);
+        assert_eq!(winding_number(&bow, p(1.5, 1.)), -1);
+        assert_eq!(winding_number(&bow, p(0.5, 1.)), 1);
         assert!(folds_back(p(0., 0.), p(1., 0.), p(2., 0.)));
         assert!(!folds_back(p(0., 0.), p(1., 0.), p(-2., 0.)));
     }

@@ -84,6 +84,7 @@ pub struct ContourSet {
     pub(crate) mark: Vec<u32>,
     pub(crate) stamp: u32,
     pub(crate) scratch: Vec<u32>,
+    pub(crate) scratch_crossings: Vec<crate::topology::Crossing>,
 }
 
 impl ContourSet {
@@ -113,6 +114,7 @@ impl ContourSet {
             mark: Vec::new(),
             stamp: 0,
             scratch: Vec::new(),
+            scratch_crossings: Vec::new(),
         }
     }
 
@@ -417,9 +419,26 @@ impl ContourSet {
             .collect()
     }
 
-    /// Candidate edges (by start vertex) that may meet box `b`, from the broad phase.
+    /// Candidate edges (by start vertex, each once) that may meet box `b`, from the
+    /// broad phase. An edge no longer than the reach L that meets `b` has an endpoint
+    /// within L/2 of it, so the query covers `b` grown by L/2 only; each vertex found
+    /// offers its outgoing edge, and its incoming one unless that edge's start was found
+    /// too.
     pub fn edges_near(&self, b: &Aabb, out: &mut Vec<VertexId>) {
-        self.bins.query(&b.expand(self.reach), out);
+        let g = b.expand(0.5 * self.reach);
+        self.bins.query(&g, out);
+        let found = out.len();
+        for i in 0..found {
+            let a = self.prev[out[i] as usize];
+            if !self.bins.covers(&g, self.pos[a as usize]) {
+                out.push(a);
+            }
+        }
+    }
+
+    /// Live vertices that may lie in box `b`, from the broad phase (a superset).
+    pub fn vertices_near(&self, b: &Aabb, out: &mut Vec<VertexId>) {
+        self.bins.query(b, out);
     }
 
     // ---- invariants ----------------------------------------------------------------------

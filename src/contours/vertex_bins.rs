@@ -29,6 +29,8 @@ pub trait BroadPhase {
     fn query(&self, b: &Aabb, out: &mut Vec<u32>);
     /// Whether `v` is registered at a place where a query for `p` would find it.
     fn finds(&self, v: u32, p: Point) -> bool;
+    /// Whether a query for box `b` returns a vertex registered at `p`.
+    fn covers(&self, b: &Aabb, p: Point) -> bool;
     /// Number of registered vertices.
     fn len(&self) -> usize;
     fn is_empty(&self) -> bool {
@@ -79,22 +81,24 @@ impl VertexBins {
         1.0 / self.inv_cell
     }
 
+    // Truncation is floor for the non-negative values that reach it (and avoids a libm
+    // call on baseline x86_64).
     #[inline]
     fn ix(&self, x: f64) -> usize {
-        let f = ((x - self.origin.x) * self.inv_cell).floor();
-        if f <= 0.0 || f.is_nan() {
-            0
-        } else {
+        let f = (x - self.origin.x) * self.inv_cell;
+        if f > 0.0 {
             (f as usize).min(self.nx - 1)
+        } else {
+            0
         }
     }
     #[inline]
     fn iy(&self, y: f64) -> usize {
-        let f = ((y - self.origin.y) * self.inv_cell).floor();
-        if f <= 0.0 || f.is_nan() {
-            0
-        } else {
+        let f = (y - self.origin.y) * self.inv_cell;
+        if f > 0.0 {
             (f as usize).min(self.ny - 1)
+        } else {
+            0
         }
     }
     #[inline]
@@ -186,6 +190,15 @@ impl BroadPhase for VertexBins {
             u = self.link_next[u as usize];
         }
         false
+    }
+
+    #[inline]
+    fn covers(&self, b: &Aabb, p: Point) -> bool {
+        let (x, y) = (self.ix(p.x), self.iy(p.y));
+        x >= self.ix(b.min.x)
+            && x <= self.ix(b.max.x)
+            && y >= self.iy(b.min.y)
+            && y <= self.iy(b.max.y)
     }
 
     fn len(&self) -> usize {

@@ -21,7 +21,7 @@ use super::motion_region::MotionRegion;
 use super::Degeneracy;
 use crate::contours::ContourSet;
 use crate::geometry::{
-    folds_back, point_segment_distance, segment_intersection, Point, SegmentIntersection,
+    folds_back, point_segment_distance, segment_intersection, Aabb, Point, SegmentIntersection,
 };
 
 /// One proper crossing of new edge `k` (at parameter `t`) with the edge starting at vertex
@@ -53,12 +53,24 @@ pub(crate) fn find_crossings(
     out: &mut Vec<Crossing>,
 ) -> Result<(), Degeneracy> {
     out.clear();
+    let (path, len) = mr.new_path();
+    let reach = Aabb::of(&path[..len]);
     for &a in cand {
         if a == skip[0] || a == skip[1] {
             continue;
         }
         let b = set.next[a as usize];
         let (pa, pb) = (set.pos[a as usize], set.pos[b as usize]);
+        // Most candidates are nowhere near c': one box test rejects both new edges.
+        let shares = b == path_ids(new_edges).0 || a == path_ids(new_edges).1;
+        if !shares
+            && (pa.x.max(pb.x) < reach.min.x
+                || pa.x.min(pb.x) > reach.max.x
+                || pa.y.max(pb.y) < reach.min.y
+                || pa.y.min(pb.y) > reach.max.y)
+        {
+            continue;
+        }
         for (k, &(s0id, s0, s1id, s1)) in new_edges.iter().enumerate() {
             // Edges sharing a vertex meet there; they must not also overlap.
             let shared = if a == s0id {
@@ -109,12 +121,17 @@ pub(crate) fn find_crossings(
     Ok(())
 }
 
+/// Ids of c's end vertices p and n.
+#[inline]
+fn path_ids(new_edges: &[NewEdge]) -> (u32, u32) {
+    (new_edges[0].0, new_edges[new_edges.len() - 1].2)
+}
+
 /// Refuses crossings that rounding could turn into touches (see module doc).
 pub(crate) fn guard_crossings(
     set: &ContourSet,
     new_edges: &[NewEdge],
     crossings: &[Crossing],
-    cand: &[u32],
     moving: u32,
 ) -> Result<(), Degeneracy> {
     let scale = new_edges
@@ -128,6 +145,7 @@ pub(crate) fn guard_crossings(
         })
         .fold(1.0, f64::max);
     let eps = 1e-9 * scale;
+    let mut near = Vec::new();
     for (i, c) in crossings.iter().enumerate() {
         let (s0id, s0, s1id, s1) = new_edges[c.k as usize];
         let a = c.edge;
@@ -143,7 +161,8 @@ pub(crate) fn guard_crossings(
         if crossings[i + 1..].iter().any(|o| o.at.dist(c.at) < eps) {
             return Err(Degeneracy::Near);
         }
-        for &w in cand {
+        set.vertices_near(&Aabb::of(&[s0, s1, e0, e1]).expand(eps), &mut near);
+        for &w in &near {
             if w == a || w == b || w == s0id || w == s1id || w == moving {
                 continue;
             }

@@ -61,7 +61,11 @@ impl ContourSet {
             let after = orient(mr.p, q, mr.n);
             return ((before > 0.0) != (after > 0.0)).then_some(if before > 0.0 { -1 } else { 1 });
         }
-        let w = mr.winding(self.pos[self.next[n as usize] as usize]);
+        let x = self.pos[self.next[n as usize] as usize];
+        if !mr.bounds().contains(x) {
+            return None;
+        }
+        let w = mr.winding(x);
         (w != 0).then_some(w)
     }
 }

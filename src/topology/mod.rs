@@ -28,7 +28,8 @@ pub mod motion_region;
 
 use crate::contours::{ContourSet, Ring, VertexId, NIL};
 use crate::geometry::{folds_back, segment_intersection, Aabb, Point, SegmentIntersection};
-use directive1::{find_crossings, guard_crossings, Crossing, NewEdge};
+pub(crate) use directive1::Crossing;
+use directive1::{find_crossings, guard_crossings, NewEdge};
 pub use events::TopologyEvent;
 use events::{assign_ids, NewLoop, OldRing};
 pub use motion_region::MotionRegion;
@@ -203,42 +204,61 @@ impl ContourSet {
         let mut cand = std::mem::take(&mut self.scratch);
         self.edges_near(&Aabb::of(&path[..k]), &mut cand);
 
-        let mut crossings: Vec<Crossing> = Vec::new();
-        let found = find_crossings(self, &mr, new_edges, &cand, [pid, v], &mut crossings)
-            .and_then(|()| guard_crossings(self, new_edges, &crossings, &cand, v));
+        let mut crossings = std::mem::take(&mut self.scratch_crossings);
+        let mut found = find_crossings(self, &mr, new_edges, &cand, [pid, v], &mut crossings);
+        if found.is_ok() && !crossings.is_empty() {
+            found = guard_crossings(self, new_edges, &crossings, v);
+        }
         if let Err(e) = found {
             self.scratch = cand;
+            self.scratch_crossings = crossings;
             return Err(e.into());
         }
 
         // Directive 2 candidates, decided before anything changes.
-        let mut involved: Vec<u32> = vec![label];
-        for c in &crossings {
-            let l = self.label[c.edge as usize];
-            if !involved.contains(&l) {
-                involved.push(l);
+        let mut involved_buf: Vec<u32> = Vec::new();
+        let involved: &[u32] = if crossings.is_empty() {
+            std::slice::from_ref(&label)
+        } else {
+            involved_buf.push(label);
+            for c in &crossings {
+                let l = self.label[c.edge as usize];
+                if !involved_buf.contains(&l) {
+                    involved_buf.push(l);
+                }
             }
-        }
+            &involved_buf
+        };
         let mut inside: Vec<(u32, i32)> = Vec::new();
-        self.rings_inside(&mr, &cand, &involved, &mut inside);
+        // A ring inside M has every vertex in M's box; the edge query saw all vertices
+        // within half the reach of c', which holds that box unless the move was long.
+        let m_box = mr.bounds();
+        let searched = Aabb::of(&path[..k]).expand(0.5 * self.reach);
+        if !(searched.contains(m_box.min) && searched.contains(m_box.max)) {
+            self.vertices_near(&m_box, &mut cand);
+        }
+        self.rings_inside(&mr, &cand, involved, &mut inside);
         let moving_inside = if crossings.is_empty() {
             self.moving_ring_inside(&mr, v, self.ring(label).len)
         } else {
             None
         };
         self.scratch = cand;
-
-        let old: Vec<OldRing> = involved
-            .iter()
-            .map(|&id| {
-                let r = self.ring(id);
-                OldRing {
-                    id,
-                    len: r.len,
-                    outer: self.loop_is_outer(r.anchor, r.area2),
-                }
-            })
-            .collect();
+        let old: Vec<OldRing> = if crossings.is_empty() && moving_inside.is_none() {
+            Vec::new() // the common case: nothing to relabel
+        } else {
+            involved
+                .iter()
+                .map(|&id| {
+                    let r = self.ring(id);
+                    OldRing {
+                        id,
+                        len: r.len,
+                        outer: self.loop_is_outer(r.anchor, r.area2),
+                    }
+                })
+                .collect()
+        };
 
         // The move itself: c' replaces c.
         let delta2 = match to {
@@ -268,19 +288,18 @@ impl ContourSet {
         };
 
         let mut events = Vec::new();
-        let mut fresh_edges: Vec<u32> = Vec::new();
         if crossings.is_empty() {
             if let Some(w) = moving_inside {
                 self.delete_ring(label);
-                let outer = old[0].outer;
-                events.push(deletion_event(label, outer, w, None));
-            } else if let Some(v) = moved {
-                fresh_edges.extend([pid, v]);
+                events.push(deletion_event(label, old[0].outer, w, None));
+            } else {
+                self.split_long_edges(&[pid, moved.unwrap_or(pid)]);
             }
         } else {
             let kept = self.splice_crossings(pid, moved, &mut crossings, label);
             let loops = self.collect_loops(&kept);
             self.settle_loops(loops, &old, &mut events);
+            let mut fresh_edges: Vec<u32> = Vec::new();
             for &x in &kept {
                 if self.is_alive(x) {
                     fresh_edges.extend([self.prev[x as usize], x]);
@@ -289,7 +308,10 @@ impl ContourSet {
             if let Some(v) = moved.filter(|&v| self.is_alive(v)) {
                 fresh_edges.extend([self.prev[v as usize], v]);
             }
+            self.split_long_edges(&fresh_edges);
         }
+        crossings.clear();
+        self.scratch_crossings = crossings;
         let survivor = moved
             .filter(|&v| self.is_alive(v))
             .map(|v| self.label[v as usize]);
@@ -298,7 +320,6 @@ impl ContourSet {
             self.delete_ring(l);
             events.push(deletion_event(l, outer, w, survivor));
         }
-        self.split_long_edges(&fresh_edges);
         Ok(events)
     }
 

@@ -35,7 +35,6 @@ pub struct MotionRegion {
     pub n: Point,
     /// New position; `None` when the vertex is removed (c' = p→n).
     pub q: Option<Point>,
-    bow: Bow,
 }
 
 fn sign(v: f64) -> i8 {
@@ -44,26 +43,26 @@ fn sign(v: f64) -> i8 {
 
 impl MotionRegion {
     pub fn new(p: Point, o: Point, n: Point, q: Option<Point>) -> Self {
-        let bow = match q {
-            None => Bow::Simple,
-            Some(q) => {
-                if let SegmentIntersection::Proper { t, .. } = segment_intersection(p, q, o, n) {
-                    Bow::OnFirst(t)
-                } else if let SegmentIntersection::Proper { t, .. } =
-                    segment_intersection(q, n, p, o)
-                {
-                    Bow::OnSecond(t)
-                } else {
-                    Bow::Simple
-                }
-            }
-        };
-        MotionRegion { p, o, n, q, bow }
+        MotionRegion { p, o, n, q }
+    }
+
+    /// Classifies the quadrilateral. Only moves with crossings need it, so it is not
+    /// computed up front.
+    fn bow(&self) -> Bow {
+        let Some(q) = self.q else { return Bow::Simple };
+        let (p, o, n) = (self.p, self.o, self.n);
+        if let SegmentIntersection::Proper { t, .. } = segment_intersection(p, q, o, n) {
+            Bow::OnFirst(t)
+        } else if let SegmentIntersection::Proper { t, .. } = segment_intersection(q, n, p, o) {
+            Bow::OnSecond(t)
+        } else {
+            Bow::Simple
+        }
     }
 
     /// Whether the quadrilateral is a bow-tie (one additive and one subtractive triangle).
     pub fn is_bow_tie(&self) -> bool {
-        self.bow != Bow::Simple
+        self.bow() != Bow::Simple
     }
 
     /// The closed loop bounding M: (p, q, n, o), or (p, n, o) for a removal.
@@ -109,7 +108,7 @@ impl MotionRegion {
             return sign(orient(self.p, self.n, self.o));
         };
         let (p, o, n) = (self.p, self.o, self.n);
-        match self.bow {
+        match self.bow() {
             // The fan from p gives the quad's signed area; its sign is M's side. Near-flat
             // regions with a crossing are rejected by the caller's guard anyway.
             Bow::Simple => sign(orient(p, q, n) + orient(p, n, o)),
