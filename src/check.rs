@@ -206,7 +206,22 @@ impl Oracle {
         result: &Result<Vec<TopologyEvent>, MoveError>,
         rng: &mut Rng,
     ) -> Result<(), String> {
-        set.sanity_check()?;
+        if let Err(e) = set.sanity_check() {
+            if std::env::var("TOPO_TRACE").is_ok() {
+                eprintln!("move p {p:?} o {o:?} n {n:?} q {q:?} result {result:?}");
+                for (i, r) in before.pts.iter().enumerate() {
+                    eprintln!("before {i}: {r:?}");
+                }
+                for id in set.contour_ids() {
+                    eprintln!(
+                        "after {id} hole {} {:?}",
+                        set.is_hole(id),
+                        set.ring_points(id)
+                    );
+                }
+            }
+            return Err(e);
+        }
         self.moves_checked += 1;
         let after = snapshot(set);
         let mloop: Vec<Point> = match q {
@@ -446,4 +461,67 @@ pub fn run_random_moves(
             .map_err(|e| format!("seed {seed} step {step}: move of {v} from {o:?} to {q:?} (p {p:?}, n {n:?}): {e}"))?;
     }
     Ok(events)
+}
+
+/// Decodes fuzzer bytes into a ring set and a sequence of moves and removals, checking
+/// every step like the property test. Input: 2 bytes of set-up, then 6 bytes per step
+/// (vertex, kind, dx, dy, fraction). Used by `fuzz/` and by the regression tests of its
+/// finds.
+pub fn run_fuzz_bytes(data: &[u8]) -> Result<(), String> {
+    if data.len() < 2 {
+        return Ok(());
+    }
+    let mut rng = Rng(data[0] as u64);
+    let mut set = random_rings(&mut rng, 1 + (data[1] % 6) as usize, 6.0);
+    let domain = set.domain();
+    let mut oracle = Oracle::new(&set, domain, 24);
+    for step in data[2..].chunks_exact(6) {
+        if set.vertex_count() == 0 {
+            return Ok(());
+        }
+        let alive: Vec<u32> = set.vertices().collect();
+        let v = alive[u16::from_le_bytes([step[0], step[1]]) as usize % alive.len()];
+        let (p, o, n) = (
+            set.position(set.prev(v)),
+            set.position(v),
+            set.position(set.next(v)),
+        );
+        let before = snapshot(&set);
+        let kinds = ring_kinds(&set);
+        let (dx, dy) = ((step[3] as i8) as f64, (step[4] as i8) as f64);
+        let frac = step[5] as f64 / 255.0;
+        let (q, result) = match step[2] % 8 {
+            0 => (None, set.remove_vertex(v)),
+            // Onto another vertex, or onto a point of another edge: exact degeneracies.
+            1 => {
+                let w = alive[(step[3] as usize * 256 + step[4] as usize) % alive.len()];
+                let q = set.position(w);
+                (Some(q), set.move_vertex(v, q))
+            }
+            2 => {
+                let w = alive[(step[3] as usize) % alive.len()];
+                let q = set.position(w).lerp(set.position(set.next(w)), frac);
+                (Some(q), set.move_vertex(v, q))
+            }
+            // On the integer lattice.
+            3 => {
+                let q = Point::new((o.x + dx / 8.0).round(), (o.y + dy / 8.0).round());
+                (Some(q), set.move_vertex(v, q))
+            }
+            // Small and large displacements.
+            4..=6 => {
+                let s = [1.0 / 32.0, 1.0 / 8.0, 0.5][(step[2] % 8 - 4) as usize];
+                let q = o + Point::new(dx * s, dy * s);
+                (Some(q), set.move_vertex(v, q))
+            }
+            _ => {
+                let q = n.lerp(p, frac * 2.0 - 0.5) + Point::new(dx / 64.0, dy / 64.0);
+                (Some(q), set.move_vertex(v, q))
+            }
+        };
+        oracle
+            .check_move(&set, &before, kinds, (p, o, n, q), &result, &mut rng)
+            .map_err(|e| format!("move of {v} from {o:?} to {q:?} (p {p:?}, n {n:?}): {e}"))?;
+    }
+    Ok(())
 }

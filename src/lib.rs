@@ -15,8 +15,11 @@
 //! Cargo features: none yet; the desktop app will sit behind a default `gui` feature.
 
 pub mod check;
+pub mod cli;
 pub mod contours;
+pub mod evolution;
 pub mod geometry;
+pub mod io;
 pub mod topology;
 
 pub use contours::{ContourId, ContourSet, RingError, VertexId};

@@ -419,6 +419,24 @@ impl ContourSet {
             .collect()
     }
 
+    /// Deletes a whole ring. Used by filters that drop regions; the caller keeps nesting
+    /// consistent (drop a ring together with the rings inside it).
+    pub fn remove_ring(&mut self, id: ContourId) {
+        let Some(r) = self.rings.get_mut(id.0 as usize).and_then(|r| r.take()) else {
+            return;
+        };
+        self.live_rings -= 1;
+        let mut w = r.anchor;
+        loop {
+            let nw = self.next[w as usize];
+            self.release(w);
+            w = nw;
+            if w == r.anchor {
+                break;
+            }
+        }
+    }
+
     /// Candidate edges (by start vertex, each once) that may meet box `b`, from the
     /// broad phase. An edge no longer than the reach L that meets `b` has an endpoint
     /// within L/2 of it, so the query covers `b` grown by L/2 only; each vertex found

@@ -127,12 +127,14 @@ fn path_ids(new_edges: &[NewEdge]) -> (u32, u32) {
     (new_edges[0].0, new_edges[new_edges.len() - 1].2)
 }
 
-/// Refuses crossings that rounding could turn into touches (see module doc).
+/// Refuses crossings that rounding could turn into touches, or whose side of M rounding
+/// could decide (see module doc).
 pub(crate) fn guard_crossings(
     set: &ContourSet,
     new_edges: &[NewEdge],
     crossings: &[Crossing],
     moving: u32,
+    mr: &MotionRegion,
 ) -> Result<(), Degeneracy> {
     let scale = new_edges
         .iter()
@@ -159,6 +161,13 @@ pub(crate) fn guard_crossings(
             return Err(Degeneracy::Near);
         }
         if crossings[i + 1..].iter().any(|o| o.at.dist(c.at) < eps) {
+            return Err(Degeneracy::Near);
+        }
+        // Next to the old portion c the side of M at the crossing is decided by rounding
+        // (a bow-tie's centre, or a spike of the old ring lying along d): refuse.
+        if point_segment_distance(c.at, mr.p, mr.o) < eps
+            || point_segment_distance(c.at, mr.o, mr.n) < eps
+        {
             return Err(Degeneracy::Near);
         }
         set.vertices_near(&Aabb::of(&[s0, s1, e0, e1]).expand(eps), &mut near);

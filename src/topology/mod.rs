@@ -207,7 +207,7 @@ impl ContourSet {
         let mut crossings = std::mem::take(&mut self.scratch_crossings);
         let mut found = find_crossings(self, &mr, new_edges, &cand, [pid, v], &mut crossings);
         if found.is_ok() && !crossings.is_empty() {
-            found = guard_crossings(self, new_edges, &crossings, v);
+            found = guard_crossings(self, new_edges, &crossings, v, &mr);
         }
         if let Err(e) = found {
             self.scratch = cand;
@@ -290,7 +290,7 @@ impl ContourSet {
         let mut events = Vec::new();
         if crossings.is_empty() {
             if let Some(w) = moving_inside {
-                self.delete_ring(label);
+                self.remove_ring(crate::contours::ContourId(label));
                 events.push(deletion_event(label, old[0].outer, w, None));
             } else {
                 self.split_long_edges(&[pid, moved.unwrap_or(pid)]);
@@ -317,7 +317,7 @@ impl ContourSet {
             .map(|v| self.label[v as usize]);
         for (l, w) in inside {
             let outer = !self.is_hole(crate::contours::ContourId(l));
-            self.delete_ring(l);
+            self.remove_ring(crate::contours::ContourId(l));
             events.push(deletion_event(l, outer, w, survivor));
         }
         Ok(events)
@@ -402,21 +402,6 @@ impl ContourSet {
                 area2: lp.area2,
             });
             self.live_rings += 1;
-        }
-    }
-
-    /// Deletes a whole ring (Directive 2).
-    fn delete_ring(&mut self, id: u32) {
-        let r = self.rings[id as usize].take().expect("live ring");
-        self.live_rings -= 1;
-        let mut w = r.anchor;
-        loop {
-            let nw = self.next[w as usize];
-            self.release(w);
-            w = nw;
-            if w == r.anchor {
-                break;
-            }
         }
     }
 

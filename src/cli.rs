@@ -1,0 +1,386 @@
+//! The headless command line: `topocontour segment …` with the contract of DESIGN.md,
+//! and `topocontour bench …` that times the whole pipeline in-process.
+
+use crate::evolution::{Evolver, Params, Polarity, Shape};
+use crate::geometry::Point;
+use crate::io::{load_image, write_atomic, Outputs};
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use std::path::{Path, PathBuf};
+
+/// Polygonal active contours that change topology correctly.
+#[derive(Parser, Debug)]
+#[command(
+    name = "topocontour",
+    version,
+    about,
+    args_conflicts_with_subcommands = true
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// An image to open in the desktop app.
+    pub image: Option<PathBuf>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Segment an image headless and write the results.
+    Segment(SegmentArgs),
+    /// Time the whole pipeline (load, evolve, export) on case folders.
+    Bench(BenchArgs),
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ObjectArg {
+    Dark,
+    Bright,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModeArg {
+    /// Topology adapts: contours split, merge, make and lose holes (seed 003).
+    Adaptive,
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct SegmentArgs {
+    /// PNG, JPEG or TIFF image (8 or 16 bit, gray or colour).
+    pub image: PathBuf,
+    /// A seed disk at X,Y with radius R (pixels); repeat for more.
+    #[arg(long = "seed", value_name = "X,Y,R", value_parser = parse_seed)]
+    pub seeds: Vec<(f64, f64, f64)>,
+    /// A rectangle MARGIN pixels inside the image border, to shrink-wrap everything.
+    #[arg(long, value_name = "MARGIN")]
+    pub wrap: Option<f64>,
+    /// A rectangle X0,Y0,X1,Y1.
+    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_rect)]
+    pub rect: Vec<(f64, f64, f64, f64)>,
+    /// Whether objects are darker or brighter than the background.
+    #[arg(long, value_enum)]
+    pub object: ObjectArg,
+    #[arg(long, value_enum, default_value = "adaptive")]
+    pub mode: ModeArg,
+    /// Write contours and events as JSON.
+    #[arg(long, value_name = "OUT")]
+    pub json: Option<PathBuf>,
+    /// Write a mask PNG (255 inside).
+    #[arg(long, value_name = "OUT.png")]
+    pub mask: Option<PathBuf>,
+    /// Write an SVG of the regions.
+    #[arg(long, value_name = "OUT")]
+    pub svg: Option<PathBuf>,
+    /// Write GeoJSON polygons.
+    #[arg(long, value_name = "OUT")]
+    pub geojson: Option<PathBuf>,
+    /// Write per-region measurements as CSV.
+    #[arg(long, value_name = "OUT")]
+    pub csv: Option<PathBuf>,
+    /// Stop after this many frames.
+    #[arg(long, value_name = "N")]
+    pub max_frames: Option<usize>,
+    /// Drop regions and holes smaller than this (square pixels).
+    #[arg(long, value_name = "PX")]
+    pub min_area: Option<f64>,
+}
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Case folders (image.png + case.json), or folders of them.
+    pub cases: Vec<PathBuf>,
+    /// Runs per case.
+    #[arg(long, default_value_t = 10)]
+    pub runs: usize,
+}
+
+fn parse_numbers<const N: usize>(s: &str) -> Result<[f64; N], String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != N {
+        return Err(format!("expected {N} comma-separated numbers, got '{s}'"));
+    }
+    let mut out = [0.0; N];
+    for (o, p) in out.iter_mut().zip(parts) {
+        *o = p
+            .trim()
+            .parse::<f64>()
+            .map_err(|_| format!("'{p}' is not a number"))?;
+        if !o.is_finite() {
+            return Err(format!("'{p}' is not a finite number"));
+        }
+    }
+    Ok(out)
+}
+
+fn parse_seed(s: &str) -> Result<(f64, f64, f64), String> {
+    let [x, y, r] = parse_numbers::<3>(s)?;
+    if r <= 0.0 {
+        return Err(format!("seed radius must be positive, got {r}"));
+    }
+    Ok((x, y, r))
+}
+
+fn parse_rect(s: &str) -> Result<(f64, f64, f64, f64), String> {
+    let [x0, y0, x1, y1] = parse_numbers::<4>(s)?;
+    if x1 <= x0 || y1 <= y0 {
+        return Err(format!("rectangle needs X0 < X1 and Y0 < Y1, got {s}"));
+    }
+    Ok((x0, y0, x1, y1))
+}
+
+/// A failure to report: exit code 2 for bad input, 1 for internal errors.
+#[derive(Debug)]
+pub struct Failure {
+    pub code: i32,
+    pub message: String,
+}
+
+fn bad(message: impl Into<String>) -> Failure {
+    Failure {
+        code: 2,
+        message: message.into(),
+    }
+}
+
+/// The shapes a segment command asks for, checked against the image size.
+pub fn init_shapes(a: &SegmentArgs, width: usize, height: usize) -> Result<Vec<Shape>, Failure> {
+    let (w, h) = (width as f64, height as f64);
+    let mut shapes = Vec::new();
+    for &(x, y, r) in &a.seeds {
+        if !(0.0..=w).contains(&x) || !(0.0..=h).contains(&y) {
+            return Err(bad(format!(
+                "seed {x},{y} lies outside the {width}×{height} image"
+            )));
+        }
+        shapes.push(Shape::Disk {
+            center: Point::new(x, y),
+            radius: r,
+        });
+    }
+    if let Some(m) = a.wrap {
+        if !m.is_finite() || m < 0.0 || 2.0 * m + 2.0 > w.min(h) {
+            return Err(bad(format!(
+                "wrap margin must be between 0 and {} for a {width}×{height} image, got {m}",
+                ((w.min(h) - 2.0) / 2.0).max(0.0)
+            )));
+        }
+        shapes.push(Shape::Rect {
+            min: Point::new(m, m),
+            max: Point::new(w - m, h - m),
+        });
+    }
+    for &(x0, y0, x1, y1) in &a.rect {
+        if x0 < 0.0 || y0 < 0.0 || x1 > w || y1 > h {
+            return Err(bad(format!(
+                "rectangle {x0},{y0},{x1},{y1} is not inside the {width}×{height} image"
+            )));
+        }
+        shapes.push(Shape::Rect {
+            min: Point::new(x0, y0),
+            max: Point::new(x1, y1),
+        });
+    }
+    if shapes.is_empty() {
+        return Err(bad(
+            "no initialisation: give --seed X,Y,R, --wrap MARGIN or --rect X0,Y0,X1,Y1",
+        ));
+    }
+    Ok(shapes)
+}
+
+/// Params for a segment command.
+pub fn params_for(a: &SegmentArgs) -> Result<Params, Failure> {
+    let mut p = Params {
+        polarity: match a.object {
+            ObjectArg::Dark => Polarity::Dark,
+            ObjectArg::Bright => Polarity::Bright,
+        },
+        ..Params::default()
+    };
+    if let Some(n) = a.max_frames {
+        if n == 0 {
+            return Err(bad("--max-frames must be at least 1"));
+        }
+        p.max_frames = n;
+    }
+    if let Some(m) = a.min_area {
+        if !m.is_finite() || m < 0.0 {
+            return Err(bad(format!("--min-area must be a number ≥ 0, got {m}")));
+        }
+        p.min_area = m;
+    }
+    Ok(p)
+}
+
+/// Output files as (path, bytes) once the run is done.
+fn render(a: &SegmentArgs, out: &Outputs) -> Vec<(PathBuf, Vec<u8>)> {
+    let mut files = Vec::new();
+    if let Some(p) = &a.json {
+        files.push((p.clone(), out.json().into_bytes()));
+    }
+    if let Some(p) = &a.mask {
+        files.push((p.clone(), out.mask_png()));
+    }
+    if let Some(p) = &a.svg {
+        files.push((p.clone(), out.svg().into_bytes()));
+    }
+    if let Some(p) = &a.geojson {
+        files.push((p.clone(), out.geojson().into_bytes()));
+    }
+    if let Some(p) = &a.csv {
+        files.push((p.clone(), out.csv().into_bytes()));
+    }
+    files
+}
+
+fn check_writable(path: &Path) -> Result<(), Failure> {
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    if !dir.is_dir() {
+        return Err(bad(format!(
+            "cannot write {}: folder {} does not exist",
+            path.display(),
+            dir.display()
+        )));
+    }
+    if path.is_dir() {
+        return Err(bad(format!(
+            "cannot write {}: it is a folder",
+            path.display()
+        )));
+    }
+    Ok(())
+}
+
+/// Runs `segment` and writes its outputs; returns the finished evolver.
+pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
+    for p in [&a.json, &a.mask, &a.svg, &a.geojson, &a.csv]
+        .into_iter()
+        .flatten()
+    {
+        check_writable(p)?;
+    }
+    let image = load_image(&a.image).map_err(|e| bad(e.to_string()))?;
+    let shapes = init_shapes(a, image.width, image.height)?;
+    let params = params_for(a)?;
+    let mut ev = Evolver::new(&image, &shapes, params).map_err(|e| bad(e.to_string()))?;
+    ev.run();
+    ev.filter_clutter();
+    let out = Outputs {
+        set: ev.contours(),
+        width: image.width,
+        height: image.height,
+        frames: ev.frames(),
+        converged: ev.is_converged(),
+        events: ev.events(),
+    };
+    let files = render(a, &out);
+    // Everything is rendered before the first file is written.
+    for (path, bytes) in files {
+        write_atomic(&path, &bytes)
+            .map_err(|e| bad(format!("cannot write {}: {e}", path.display())))?;
+    }
+    Ok(ev)
+}
+
+/// Times `segment` (in memory, without writing) on case folders.
+pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
+    let mut dirs = Vec::new();
+    for c in &b.cases {
+        if c.join("case.json").is_file() {
+            dirs.push(c.clone());
+        } else if let Ok(rd) = std::fs::read_dir(c) {
+            let mut sub: Vec<PathBuf> = rd
+                .flatten()
+                .map(|e| e.path())
+                .filter(|p| p.join("case.json").is_file())
+                .collect();
+            sub.sort();
+            dirs.extend(sub);
+        } else {
+            return Err(bad(format!("{} is not a case folder", c.display())));
+        }
+    }
+    println!(
+        "{:<18} {:>8} {:>8} {:>8} {:>7} {:>9}",
+        "case", "min ms", "median", "max ms", "frames", "contours"
+    );
+    for d in dirs {
+        let meta: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(d.join("case.json")).map_err(|e| bad(e.to_string()))?,
+        )
+        .map_err(|e| bad(e.to_string()))?;
+        let init = &meta["init"];
+        let mut args = SegmentArgs {
+            image: d.join("image.png"),
+            seeds: init["seeds"]
+                .as_array()
+                .map(|s| {
+                    s.iter()
+                        .map(|v| {
+                            (
+                                v[0].as_f64().unwrap_or(0.0),
+                                v[1].as_f64().unwrap_or(0.0),
+                                v[2].as_f64().unwrap_or(1.0),
+                            )
+                        })
+                        .collect()
+                })
+                .unwrap_or_default(),
+            wrap: init["border_margin"].as_f64(),
+            rect: Vec::new(),
+            object: if init["object"] == "bright" {
+                ObjectArg::Bright
+            } else {
+                ObjectArg::Dark
+            },
+            mode: ModeArg::Adaptive,
+            json: None,
+            mask: None,
+            svg: None,
+            geojson: None,
+            csv: None,
+            max_frames: None,
+            min_area: None,
+        };
+        let mut times = Vec::new();
+        let (mut frames, mut contours) = (0, 0);
+        for _ in 0..b.runs.max(1) {
+            let t = std::time::Instant::now();
+            let image = load_image(&args.image).map_err(|e| bad(e.to_string()))?;
+            let shapes = init_shapes(&args, image.width, image.height)?;
+            let mut ev = Evolver::new(&image, &shapes, params_for(&args)?)
+                .map_err(|e| bad(e.to_string()))?;
+            ev.run();
+            ev.filter_clutter();
+            let out = Outputs {
+                set: ev.contours(),
+                width: image.width,
+                height: image.height,
+                frames: ev.frames(),
+                converged: ev.is_converged(),
+                events: ev.events(),
+            };
+            args.json = None;
+            std::hint::black_box((out.json(), out.mask_png()));
+            times.push(t.elapsed().as_secs_f64() * 1e3);
+            frames = ev.frames();
+            contours = ev.contours().contour_count();
+        }
+        times.sort_by(f64::total_cmp);
+        let name = d
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        println!(
+            "{:<18} {:>8.1} {:>8.1} {:>8.1} {:>7} {:>9}",
+            name,
+            times[0],
+            times[times.len() / 2],
+            times[times.len() - 1],
+            frames,
+            contours
+        );
+    }
+    Ok(())
+}

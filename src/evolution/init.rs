@@ -1,0 +1,116 @@
+//! Initial contours a user draws: seed disks, a wrap rectangle (a margin inside the
+//! border), any rectangle, a polygon. Each becomes an outer ring with vertices about
+//! `spacing` apart.
+
+use crate::geometry::{signed_area, Point};
+
+/// One shape of an initialisation, in image pixels.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub enum Shape {
+    Disk { center: Point, radius: f64 },
+    Rect { min: Point, max: Point },
+    Polygon(Vec<Point>),
+}
+
+impl Shape {
+    /// The ring for this shape, region on the left, vertices at most `spacing` apart.
+    pub fn ring(&self, spacing: f64) -> Vec<Point> {
+        match self {
+            Shape::Disk { center, radius } => {
+                let k = ((std::f64::consts::TAU * radius / spacing).ceil() as usize).max(6);
+                (0..k)
+                    .map(|i| {
+                        let a = std::f64::consts::TAU * i as f64 / k as f64;
+                        Point::new(center.x + radius * a.cos(), center.y + radius * a.sin())
+                    })
+                    .collect()
+            }
+            Shape::Rect { min, max } => {
+                let corners = [
+                    *min,
+                    Point::new(max.x, min.y),
+                    *max,
+                    Point::new(min.x, max.y),
+                ];
+                densify(&corners, spacing)
+            }
+            Shape::Polygon(pts) => {
+                let mut pts = pts.clone();
+                if signed_area(&pts) < 0.0 {
+                    pts.reverse();
+                }
+                densify(&pts, spacing)
+            }
+        }
+    }
+
+    /// A point inside the shape (its centre, for disks and rectangles).
+    pub fn center(&self) -> Point {
+        match self {
+            Shape::Disk { center, .. } => *center,
+            Shape::Rect { min, max } => min.lerp(*max, 0.5),
+            Shape::Polygon(pts) => {
+                pts.iter().fold(Point::default(), |a, &p| a + p) * (1.0 / pts.len() as f64)
+            }
+        }
+    }
+
+    /// The same shape scaled about its centre.
+    pub fn scaled(&self, f: f64) -> Shape {
+        let c = self.center();
+        let s = |p: Point| c + (p - c) * f;
+        match self {
+            Shape::Disk { center, radius } => Shape::Disk {
+                center: *center,
+                radius: radius * f,
+            },
+            Shape::Rect { min, max } => Shape::Rect {
+                min: s(*min),
+                max: s(*max),
+            },
+            Shape::Polygon(pts) => Shape::Polygon(pts.iter().map(|&p| s(p)).collect()),
+        }
+    }
+}
+
+/// Inserts points so that no edge of the closed polygon is longer than `spacing`.
+pub fn densify(pts: &[Point], spacing: f64) -> Vec<Point> {
+    let n = pts.len();
+    let mut out = Vec::new();
+    for i in 0..n {
+        let (a, b) = (pts[i], pts[(i + 1) % n]);
+        let k = (a.dist(b) / spacing).ceil().max(1.0) as usize;
+        for j in 0..k {
+            out.push(a.lerp(b, j as f64 / k as f64));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shapes_make_outer_rings_with_short_edges() {
+        for s in [
+            Shape::Disk {
+                center: Point::new(10.0, 10.0),
+                radius: 5.0,
+            },
+            Shape::Rect {
+                min: Point::new(1.0, 2.0),
+                max: Point::new(30.0, 20.0),
+            },
+            Shape::Polygon(vec![
+                Point::new(0.0, 0.0),
+                Point::new(0.0, 10.0),
+                Point::new(10.0, 0.0),
+            ]),
+        ] {
+            let r = s.ring(1.5);
+            assert!(signed_area(&r) > 0.0, "{s:?}");
+            assert!((0..r.len()).all(|i| r[i].dist(r[(i + 1) % r.len()]) <= 1.5 + 1e-9));
+        }
+    }
+}

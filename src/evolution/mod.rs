@@ -1,0 +1,15 @@
+//! Image-driven evolution (DESIGN layer 4): the image field and pyramid, forces,
+//! initialisations, remeshing, the frame-by-frame `Evolver` and measurements.
+
+pub mod evolver;
+pub mod field;
+pub mod forces;
+pub mod init;
+pub mod measure;
+pub mod remesh;
+
+pub use evolver::{EvolveError, Evolver, Frame, FrameEvent, Params};
+pub use field::{Field, Pyramid};
+pub use forces::{ForceWeights, IntensityModel, Polarity};
+pub use init::Shape;
+pub use measure::{regions, Region};

@@ -1,0 +1,37 @@
+//! Remeshing (seed 004 §2.3): keep every edge within [d_min, d_max] by splitting long
+//! edges at their midpoint and removing a vertex of short ones. Both are topology-safe
+//! operations of the core (a removal is a motion and may even change topology, which is
+//! reported like any other event).
+
+use crate::contours::ContourSet;
+use crate::topology::TopologyEvent;
+
+/// One remeshing pass over all rings.
+pub fn remesh(set: &mut ContourSet, d_min: f64, d_max: f64, events: &mut Vec<TopologyEvent>) {
+    let order: Vec<u32> = set.vertices().collect();
+    for v in order {
+        if !set.is_alive(v) {
+            continue;
+        }
+        let n = set.next(v);
+        let len = set.position(v).dist(set.position(n));
+        if len > d_max {
+            let parts = (len / d_max).ceil() as usize;
+            let mut a = v;
+            for i in 1..parts {
+                match set.insert_vertex(a, 1.0 / (parts - i + 1) as f64) {
+                    Ok(x) => a = x,
+                    Err(_) => break,
+                }
+            }
+        } else if len < d_min && set.ring_len(set.contour_of(v)) > 3 {
+            // Remove the end of the short edge if the edge that replaces it stays short.
+            let nn = set.next(n);
+            if set.position(v).dist(set.position(nn)) <= d_max {
+                if let Ok(ev) = set.remove_vertex(n) {
+                    events.extend(ev);
+                }
+            }
+        }
+    }
+}
