@@ -5,7 +5,9 @@
 //! every topology change is exact and reported. Evolution runs coarse to fine over the
 //! pyramid: on level l the grid spacing is U = 2^l pixels, edges are kept within
 //! [U, 2√2·U] (seed 004), a step is at most 0.75·U, and the level ends when the share of
-//! active vertices stays below 3% (seed 004's convergence test) for three frames.
+//! active vertices stays below 3% (seed 004's convergence test) with the area steady for
+//! three frames — or, on a coarse level whose contours chatter without the area moving,
+//! after 40 frames, since the finer level will settle them.
 //!
 //! Choices: vertices that stayed still for a while are only revisited every fourth frame
 //! unless a neighbour moves, so a long growth along a spiral costs what its tip costs; a
@@ -19,6 +21,9 @@ use super::remesh::remesh;
 use crate::contours::ContourSet;
 use crate::geometry::{Aabb, Point};
 use crate::topology::{MoveError, TopologyEvent};
+
+/// Frames one pyramid level may take before the next finer level takes over.
+const LEVEL_FRAMES_CAP: usize = 600;
 
 /// Parameters of an evolution. `Params::default()` is the one set that serves every
 /// public case.
@@ -100,6 +105,9 @@ pub struct Evolver {
     level: usize,
     frame: usize,
     calm: usize,
+    level_frames: usize,
+    /// Region area after each frame of the current level.
+    areas: Vec<f64>,
     converged: bool,
     /// Per vertex id: frames since it last moved noticeably (saturating).
     still: Vec<u8>,
@@ -144,6 +152,8 @@ impl Evolver {
             level,
             frame: 0,
             calm: 0,
+            level_frames: 0,
+            areas: Vec::new(),
             converged: false,
             still: Vec::new(),
             events: Vec::new(),
@@ -231,14 +241,28 @@ impl Evolver {
         remesh(&mut self.set, d_min, d_max, &mut events);
 
         self.frame += 1;
+        self.level_frames += 1;
         let vertices = self.set.vertex_count().max(1);
         let share = active as f64 / vertices as f64;
-        self.calm = if share < self.params.converged_share {
-            self.calm + 1
-        } else {
-            0
+        let area = self.set.region_area();
+        self.areas.push(area);
+        // Steady: the region's area changed little over the last ten frames (a tip still
+        // growing along a thin structure is few vertices but steady area growth).
+        let steady = |tol: f64| {
+            let n = self.areas.len();
+            n > 10
+                && (self.areas[n - 1] - self.areas[n - 11]).abs()
+                    <= tol * area.abs() + scale * scale
         };
-        if self.calm >= 3 || self.set.vertex_count() == 0 {
+        let quiet = share < self.params.converged_share && steady(0.002);
+        self.calm = if quiet { self.calm + 1 } else { 0 };
+        // Contours chattering on a coarse level without going anywhere: refine instead.
+        let stalled = self.level > 0 && self.level_frames >= 40 && steady(0.01);
+        if self.calm >= 3
+            || stalled
+            || self.level_frames >= LEVEL_FRAMES_CAP
+            || self.set.vertex_count() == 0
+        {
             if self.level == 0 || self.set.vertex_count() == 0 {
                 self.converged = true;
             } else {
@@ -275,6 +299,8 @@ impl Evolver {
     fn set_level(&mut self, level: usize) {
         self.level = level;
         self.calm = 0;
+        self.level_frames = 0;
+        self.areas.clear();
         let scale = Pyramid::scale(level);
         self.set
             .set_max_edge(2.0 * std::f64::consts::SQRT_2 * scale);

@@ -165,17 +165,19 @@ pub fn normal_speed(
     let s = model.score(i);
     let region = s.clamp(-1.0, 1.0);
     let contrast = (model.object - model.background).abs().max(1e-6);
-    // Balloon with the object's intensity window: out inside it, in elsewhere, faded
-    // where the gradient says an edge is near.
-    let inside_window = (0.0..=2.5).contains(&s);
+    // Balloon with the object's intensity window (scores 0 to 2.5): out inside it, in
+    // outside, ramping over a quarter of the score at the window's edges so that it
+    // never chatters across an edge; faded where the gradient says an edge is near.
+    let window = ((s / 0.25).min((2.5 - s) / 0.25)).clamp(-1.0, 1.0);
     let g = field.gradient(x);
     let gmag = g.norm() / contrast;
     let stop = 1.0 / (1.0 + 16.0 * gmag * gmag);
-    let balloon = if inside_window { stop } else { -stop };
-    // Edge attraction: climb the gradient magnitude along the normal.
-    let ahead = field.gradient(x + n).norm();
-    let behind = field.gradient(x - n).norm();
-    let edge = ((ahead - behind) / contrast).clamp(-1.0, 1.0);
+    let balloon = window * stop;
+    // Edge attraction: climb the gradient magnitude along the normal (half a pixel each
+    // way: halos and texture make wider differences chatter).
+    let ahead = field.gradient(x + n * 0.5).norm();
+    let behind = field.gradient(x - n * 0.5).norm();
+    let edge = (2.0 * (ahead - behind) / contrast).clamp(-1.0, 1.0);
     NormalSpeed {
         speed: w.region * region + w.balloon * balloon + w.edge * edge,
         region,

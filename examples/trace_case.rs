@@ -1,0 +1,70 @@
+//! Prints per-frame statistics of an evolution on a case folder: `trace_case DIR [EVERY]`.
+use topocontour::cli::{init_shapes, params_for, ModeArg, ObjectArg, SegmentArgs};
+use topocontour::evolution::Evolver;
+use topocontour::io::load_image;
+
+fn main() {
+    let a: Vec<String> = std::env::args().collect();
+    let dir = std::path::PathBuf::from(&a[1]);
+    let every: usize = a.get(2).map_or(50, |s| s.parse().unwrap());
+    let meta: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("case.json")).unwrap()).unwrap();
+    let init = &meta["init"];
+    let args = SegmentArgs {
+        image: dir.join("image.png"),
+        seeds: init["seeds"]
+            .as_array()
+            .map(|s| {
+                s.iter()
+                    .map(|v| {
+                        (
+                            v[0].as_f64().unwrap(),
+                            v[1].as_f64().unwrap(),
+                            v[2].as_f64().unwrap(),
+                        )
+                    })
+                    .collect()
+            })
+            .unwrap_or_default(),
+        wrap: init["border_margin"].as_f64(),
+        rect: vec![],
+        object: if init["object"] == "bright" {
+            ObjectArg::Bright
+        } else {
+            ObjectArg::Dark
+        },
+        mode: ModeArg::Adaptive,
+        json: None,
+        mask: None,
+        svg: None,
+        geojson: None,
+        csv: None,
+        max_frames: None,
+        min_area: None,
+    };
+    let image = load_image(&args.image).unwrap();
+    let mut params = params_for(&args).unwrap();
+    if let Ok(w) = std::env::var("W") {
+        let v: Vec<f64> = w.split(',').map(|x| x.parse().unwrap()).collect();
+        params.weights = topocontour::evolution::ForceWeights {
+            region: v[0],
+            balloon: v[1],
+            edge: v[2],
+            stretch: v[3],
+            bend: v[4],
+        };
+    }
+    let mut ev = Evolver::new(
+        &image,
+        &init_shapes(&args, image.width, image.height).unwrap(),
+        params,
+    )
+    .unwrap();
+    println!("model {:?}", ev.model());
+    while !ev.is_converged() && ev.frames() < 3000 {
+        let f = ev.step();
+        if f.index % every == 0 || !f.events.is_empty() || f.converged {
+            println!("frame {} level {} verts {} contours {} area {:.1} speed {:.3} active {:.3} energy {:.1} events {:?}", f.index, f.level, f.vertices, f.contours, f.area, f.mean_speed, f.active_share, f.energy, f.events);
+        }
+    }
+}
