@@ -50,7 +50,7 @@ pub struct SegmentArgs {
     #[arg(long = "seed", value_name = "X,Y,R", value_parser = parse_seed)]
     pub seeds: Vec<(f64, f64, f64)>,
     /// A rectangle MARGIN pixels inside the image border, to shrink-wrap everything.
-    #[arg(long, value_name = "MARGIN")]
+    #[arg(long, value_name = "MARGIN", allow_negative_numbers = true)]
     pub wrap: Option<f64>,
     /// A rectangle X0,Y0,X1,Y1.
     #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_rect)]
@@ -79,7 +79,7 @@ pub struct SegmentArgs {
     #[arg(long, value_name = "N")]
     pub max_frames: Option<usize>,
     /// Drop regions and holes smaller than this (square pixels).
-    #[arg(long, value_name = "PX")]
+    #[arg(long, value_name = "PX", allow_negative_numbers = true)]
     pub min_area: Option<f64>,
 }
 

@@ -164,7 +164,7 @@ impl Outputs<'_> {
                 .chain(r.holes.iter().copied())
                 .collect();
             s.push_str(&format!(
-                "  <path id=\"contour-{}\" fill=\"#e8a33d\" fill-opacity=\"0.45\" stroke=\"#b3541e\" stroke-width=\"0.5\" fill-rule=\"evenodd\" d=\"{}\"/>\n",
+                "  <path id=\"contour-{}\" fill=\"#e8a33d\" fill-opacity=\"0.5\" fill-rule=\"evenodd\" d=\"{}\"/>\n",
                 r.id,
                 self.path_d(&rings)
             ));

@@ -1,0 +1,362 @@
+//! The real binary on the public cases and on bad input (DESIGN's CLI contract).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_topocontour"))
+}
+
+fn cases_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/cases")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("topocontour-test-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d.join(name)
+}
+
+fn gray_png(path: &Path) -> (u32, u32, Vec<u8>) {
+    let img = image::open(path).unwrap().to_luma8();
+    (img.width(), img.height(), img.into_raw())
+}
+
+fn dice(a: &[u8], b: &[u8]) -> f64 {
+    let (mut inter, mut sa, mut sb) = (0usize, 0usize, 0usize);
+    for (&x, &y) in a.iter().zip(b) {
+        let (x, y) = (x > 127, y > 127);
+        inter += (x && y) as usize;
+        sa += x as usize;
+        sb += y as usize;
+    }
+    2.0 * inter as f64 / (sa + sb).max(1) as f64
+}
+
+/// Runs a case as score_cases.py does; returns the JSON and the mask path.
+fn run_case(name: &str, extra: &[&str]) -> (serde_json::Value, PathBuf) {
+    let dir = cases_dir().join(name);
+    let meta: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("case.json")).unwrap()).unwrap();
+    let init = &meta["init"];
+    let mut args: Vec<String> = vec![
+        "segment".into(),
+        dir.join("image.png").display().to_string(),
+    ];
+    for s in init["seeds"].as_array().into_iter().flatten() {
+        args.extend(["--seed".into(), format!("{},{},{}", s[0], s[1], s[2])]);
+    }
+    if let Some(m) = init["border_margin"].as_f64() {
+        args.extend(["--wrap".into(), m.to_string()]);
+    }
+    args.extend([
+        "--object".into(),
+        init["object"].as_str().unwrap().to_string(),
+    ]);
+    let (mask, json) = (
+        tmp(&format!("{name}-mask.png")),
+        tmp(&format!("{name}.json")),
+    );
+    args.extend([
+        "--mask".into(),
+        mask.display().to_string(),
+        "--json".into(),
+        json.display().to_string(),
+    ]);
+    args.extend(extra.iter().map(|s| s.to_string()));
+    let out = bin().args(&args).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{name}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    (
+        serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap(),
+        mask,
+    )
+}
+
+#[test]
+fn public_cases_get_topology_and_dice() {
+    let mut total = 0.0;
+    let names = [
+        "blobs_wrap",
+        "bridge_merge",
+        "cheese_holes",
+        "noisy_blobs",
+        "phase_cells",
+        "ring_seed",
+        "slot_concavity",
+        "spiral_grow",
+    ];
+    for name in names {
+        let (doc, mask) = run_case(name, &[]);
+        let meta: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(cases_dir().join(name).join("case.json")).unwrap(),
+        )
+        .unwrap();
+        let contours = doc["contours"].as_array().unwrap();
+        let holes = contours.iter().filter(|c| c["hole"] == true).count();
+        let outer = contours.len() - holes;
+        assert_eq!(
+            outer as u64,
+            meta["expect"]["components"].as_u64().unwrap(),
+            "{name} components"
+        );
+        assert_eq!(
+            holes as u64,
+            meta["expect"]["holes"].as_u64().unwrap(),
+            "{name} holes"
+        );
+        // Holes name an outer parent; outer rings have none here.
+        for c in contours {
+            assert_eq!(c["hole"] == true, !c["parent"].is_null(), "{name}: {c}");
+        }
+        let (w, h, m) = gray_png(&mask);
+        let (tw, th, t) = gray_png(&cases_dir().join(name).join("truth.png"));
+        assert_eq!((w, h), (tw, th));
+        let d = dice(&m, &t);
+        assert!(d >= 0.95, "{name}: dice {d}");
+        total += d;
+    }
+    assert!(
+        total / names.len() as f64 >= 0.98,
+        "mean dice {}",
+        total / names.len() as f64
+    );
+}
+
+#[test]
+fn events_are_reported_with_frames() {
+    let (doc, _) = run_case("bridge_merge", &[]);
+    let events = doc["events"].as_array().unwrap();
+    assert!(
+        events.iter().any(|e| e["kind"] == "merge"
+            && e["contours"].as_array().unwrap().len() == 2
+            && e["frame"].as_u64().unwrap() > 0),
+        "{events:?}"
+    );
+    let (doc, _) = run_case("ring_seed", &[]);
+    assert!(doc["events"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|e| e["kind"] == "hole_made"));
+    assert_eq!(doc["converged"], true);
+    assert_eq!(
+        (doc["width"].as_u64(), doc["height"].as_u64()),
+        (Some(256), Some(256))
+    );
+}
+
+#[test]
+fn svg_renders_like_the_mask_and_geojson_parses() {
+    let svg_path = tmp("cheese.svg");
+    let geo_path = tmp("cheese.geojson");
+    let csv_path = tmp("cheese.csv");
+    let (_, mask) = run_case(
+        "cheese_holes",
+        &[
+            "--svg",
+            svg_path.to_str().unwrap(),
+            "--geojson",
+            geo_path.to_str().unwrap(),
+            "--csv",
+            csv_path.to_str().unwrap(),
+        ],
+    );
+    let (w, h, m) = gray_png(&mask);
+    // Render the SVG with a real renderer and compare pixel coverage with the mask.
+    let tree = resvg::usvg::Tree::from_str(
+        &std::fs::read_to_string(&svg_path).unwrap(),
+        &resvg::usvg::Options::default(),
+    )
+    .unwrap();
+    let mut pixmap = resvg::tiny_skia::Pixmap::new(w, h).unwrap();
+    resvg::render(
+        &tree,
+        resvg::tiny_skia::Transform::identity(),
+        &mut pixmap.as_mut(),
+    );
+    // Fill alpha is 0.5: a pixel at least half covered is above 64.
+    let rendered: Vec<bool> = pixmap.pixels().iter().map(|p| p.alpha() >= 64).collect();
+    let (mut inter, mut union) = (0usize, 0usize);
+    for (&a, &b) in rendered.iter().zip(&m) {
+        let b = b > 127;
+        inter += (a && b) as usize;
+        union += (a || b) as usize;
+    }
+    let iou = inter as f64 / union as f64;
+    assert!(iou >= 0.99, "svg vs mask IoU {iou}");
+    let geo: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&geo_path).unwrap()).unwrap();
+    let features = geo["features"].as_array().unwrap();
+    assert_eq!(features.len(), 1);
+    let rings = features[0]["geometry"]["coordinates"].as_array().unwrap();
+    assert_eq!(rings.len(), 3, "one outer ring and two holes");
+    for r in rings {
+        let r = r.as_array().unwrap();
+        assert_eq!(r.first(), r.last(), "closed ring");
+    }
+    let csv = std::fs::read_to_string(&csv_path).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(
+        lines[0],
+        "id,area,perimeter,circularity,centroid_x,centroid_y,holes"
+    );
+    assert_eq!(lines.len(), 2);
+    assert!(lines[1].ends_with(",2"));
+}
+
+fn expect_bad(args: &[&str], needle: &str) {
+    let out = bin().args(args).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert!(err.to_lowercase().contains(needle), "{args:?}: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn bad_input_is_one_clear_error_and_exit_2() {
+    let img = cases_dir().join("ring_seed/image.png");
+    let img = img.to_str().unwrap();
+    let out = tmp("never.json");
+    let out_s = out.to_str().unwrap();
+    expect_bad(
+        &[
+            "segment",
+            "/nonexistent/x.png",
+            "--seed",
+            "1,1,1",
+            "--object",
+            "dark",
+        ],
+        "cannot read",
+    );
+    let corrupt = tmp("corrupt.png");
+    std::fs::write(&corrupt, b"\x89PNG\r\n\x1a\nthis is not a png").unwrap();
+    expect_bad(
+        &[
+            "segment",
+            corrupt.to_str().unwrap(),
+            "--seed",
+            "1,1,1",
+            "--object",
+            "dark",
+        ],
+        "not a readable",
+    );
+    // A PNG header that claims zero width.
+    let mut zero = Vec::new();
+    zero.extend_from_slice(b"\x89PNG\r\n\x1a\n");
+    let ihdr = [0u8, 0, 0, 0, 0, 0, 0, 1, 8, 0, 0, 0, 0];
+    zero.extend_from_slice(&13u32.to_be_bytes());
+    zero.extend_from_slice(b"IHDR");
+    zero.extend_from_slice(&ihdr);
+    zero.extend_from_slice(&[0, 0, 0, 0]);
+    let zero_path = tmp("zero.png");
+    std::fs::write(&zero_path, &zero).unwrap();
+    let z = bin()
+        .args([
+            "segment",
+            zero_path.to_str().unwrap(),
+            "--seed",
+            "1,1,1",
+            "--object",
+            "dark",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(
+        z.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&z.stderr)
+    );
+    expect_bad(
+        &[
+            "segment", img, "--seed", "900,10,5", "--object", "dark", "--json", out_s,
+        ],
+        "outside",
+    );
+    expect_bad(
+        &["segment", img, "--seed", "10,10,NaN", "--object", "dark"],
+        "finite",
+    );
+    expect_bad(
+        &["segment", img, "--seed", "10,10,-3", "--object", "dark"],
+        "positive",
+    );
+    expect_bad(
+        &["segment", img, "--wrap", "-4", "--object", "dark"],
+        "wrap",
+    );
+    expect_bad(&["segment", img, "--object", "dark"], "no initialisation");
+    expect_bad(
+        &[
+            "segment",
+            img,
+            "--seed",
+            "10,10,3",
+            "--object",
+            "dark",
+            "--min-area",
+            "-1",
+        ],
+        "min-area",
+    );
+    expect_bad(
+        &[
+            "segment",
+            img,
+            "--seed",
+            "10,10,3",
+            "--object",
+            "dark",
+            "--json",
+            "/nonexistent-dir/out.json",
+        ],
+        "cannot write",
+    );
+    assert!(!out.exists(), "no output after a failed run");
+}
+
+#[test]
+fn unwritable_output_leaves_no_partial_file() {
+    let img = cases_dir().join("ring_seed/image.png");
+    let dir = tmp("readonly");
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut perms = std::fs::metadata(&dir).unwrap().permissions();
+    perms.set_readonly(true);
+    std::fs::set_permissions(&dir, perms).unwrap();
+    let target = dir.join("out.svg");
+    let json = tmp("ok-before-fail.json");
+    let out = bin()
+        .args([
+            "segment",
+            img.to_str().unwrap(),
+            "--seed",
+            "136,70,5",
+            "--object",
+            "dark",
+            "--json",
+            json.to_str().unwrap(),
+            "--svg",
+            target.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    let mut perms = std::fs::metadata(&dir).unwrap().permissions();
+    #[allow(clippy::permissions_set_readonly_false)]
+    perms.set_readonly(false);
+    std::fs::set_permissions(&dir, perms).unwrap();
+    // Root may write anyway; otherwise the failure must be clean.
+    if !out.status.success() {
+        assert_eq!(out.status.code(), Some(2));
+        assert!(String::from_utf8_lossy(&out.stderr).contains("cannot write"));
+        assert!(
+            std::fs::read_dir(&dir).unwrap().next().is_none(),
+            "no temporary or partial file left"
+        );
+    }
+}
