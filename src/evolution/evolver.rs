@@ -6,8 +6,8 @@
 //! pyramid: on level l the grid spacing is U = 2^l pixels, edges are kept within
 //! [U, 2√2·U] (seed 004), a step is at most 0.75·U, and the level ends when the share of
 //! active vertices stays below 3% (seed 004's convergence test) with the area steady for
-//! three frames — or, on a coarse level whose contours chatter without the area moving,
-//! after 40 frames, since the finer level will settle them.
+//! three frames — or, when noise keeps vertices chattering while the area stays put, after
+//! 40 frames (on a coarse level the finer one will settle them).
 //!
 //! Choices: vertices that stayed still for a while are only revisited every fourth frame
 //! unless a neighbour moves, so a long growth along a spiral costs what its tip costs; a
@@ -256,8 +256,8 @@ impl Evolver {
         };
         let quiet = share < self.params.converged_share && steady(0.002);
         self.calm = if quiet { self.calm + 1 } else { 0 };
-        // Contours chattering on a coarse level without going anywhere: refine instead.
-        let stalled = self.level > 0 && self.level_frames >= 40 && steady(0.01);
+        // Contours chattering in noise without going anywhere: refine, or stop.
+        let stalled = self.level_frames >= 40 && steady(if self.level > 0 { 0.01 } else { 0.003 });
         if self.calm >= 3
             || stalled
             || self.level_frames >= LEVEL_FRAMES_CAP

@@ -76,15 +76,20 @@ impl Field {
 
     /// Separable 1/16 [1 4 6 4 1] blur with clamped borders.
     pub fn blur5(&self) -> Field {
-        const K: [f32; 5] = [1.0 / 16.0, 4.0 / 16.0, 6.0 / 16.0, 4.0 / 16.0, 1.0 / 16.0];
+        self.blur(&[1.0 / 16.0, 4.0 / 16.0, 6.0 / 16.0, 4.0 / 16.0, 1.0 / 16.0])
+    }
+
+    /// Separable blur with an odd symmetric kernel, clamped borders.
+    pub fn blur(&self, k: &[f32]) -> Field {
+        let r = (k.len() / 2) as isize;
         let (w, h) = (self.width, self.height);
         let mut tmp = vec![0f32; w * h];
         for y in 0..h {
             let row = &self.data[y * w..(y + 1) * w];
             for x in 0..w {
                 let mut s = 0.0;
-                for (k, &kv) in K.iter().enumerate() {
-                    let xi = (x as isize + k as isize - 2).clamp(0, w as isize - 1) as usize;
+                for (i, &kv) in k.iter().enumerate() {
+                    let xi = (x as isize + i as isize - r).clamp(0, w as isize - 1) as usize;
                     s += kv * row[xi];
                 }
                 tmp[y * w + x] = s;
@@ -92,8 +97,8 @@ impl Field {
         }
         let mut out = vec![0f32; w * h];
         for y in 0..h {
-            for (k, &kv) in K.iter().enumerate() {
-                let yi = (y as isize + k as isize - 2).clamp(0, h as isize - 1) as usize;
+            for (i, &kv) in k.iter().enumerate() {
+                let yi = (y as isize + i as isize - r).clamp(0, h as isize - 1) as usize;
                 let src = &tmp[yi * w..(yi + 1) * w];
                 let dst = &mut out[y * w..(y + 1) * w];
                 for x in 0..w {
@@ -116,8 +121,9 @@ impl Pyramid {
     /// Builds levels down to the coarsest whose short side is still at least `min_side`
     /// pixels (at most `max_levels` levels in all).
     pub fn new(image: &Field, min_side: usize, max_levels: usize) -> Self {
-        // Level 0 is smoothed once: noise suppression for the fine forces.
-        let mut levels = vec![image.blur5()];
+        // Level 0 is smoothed lightly (1/4 [1 2 1]): enough against pixel noise, little
+        // enough that halos next to an edge do not pull it inwards.
+        let mut levels = vec![image.blur(&[0.25, 0.5, 0.25])];
         while levels.len() < max_levels {
             let last = levels.last().unwrap();
             if last.width.min(last.height) / 2 < min_side {
