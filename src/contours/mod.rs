@@ -443,15 +443,8 @@ impl ContourSet {
     /// offers its outgoing edge, and its incoming one unless that edge's start was found
     /// too.
     pub fn edges_near(&self, b: &Aabb, out: &mut Vec<VertexId>) {
-        let g = b.expand(0.5 * self.reach);
-        self.bins.query(&g, out);
-        let found = out.len();
-        for i in 0..found {
-            let a = self.prev[out[i] as usize];
-            if !self.bins.covers(&g, self.pos[a as usize]) {
-                out.push(a);
-            }
-        }
+        self.bins
+            .query_edges(&b.expand(0.5 * self.reach), &self.prev, &self.pos, out);
     }
 
     /// Live vertices that may lie in box `b`, from the broad phase (a superset).

@@ -31,6 +31,19 @@ pub trait BroadPhase {
     fn finds(&self, v: u32, p: Point) -> bool;
     /// Whether a query for box `b` returns a vertex registered at `p`.
     fn covers(&self, b: &Aabb, p: Point) -> bool;
+    /// Like [`BroadPhase::query`], and also appends to `out` the predecessor (by
+    /// `prev`) of each vertex found, unless the query returned that one itself: the start
+    /// vertices of every edge with an endpoint in the queried cells, each once.
+    fn query_edges(&self, b: &Aabb, prev: &[u32], pos: &[Point], out: &mut Vec<u32>) {
+        self.query(b, out);
+        let found = out.len();
+        for i in 0..found {
+            let a = prev[out[i] as usize];
+            if !self.covers(b, pos[a as usize]) {
+                out.push(a);
+            }
+        }
+    }
     /// Number of registered vertices.
     fn len(&self) -> usize;
     fn is_empty(&self) -> bool {
@@ -173,6 +186,21 @@ impl BroadPhase for VertexBins {
                     out.push(v);
                     v = self.link_next[v as usize];
                 }
+            }
+        }
+    }
+
+    fn query_edges(&self, b: &Aabb, prev: &[u32], pos: &[Point], out: &mut Vec<u32>) {
+        self.query(b, out);
+        let (x0, x1) = (self.ix(b.min.x), self.ix(b.max.x));
+        let (y0, y1) = (self.iy(b.min.y), self.iy(b.max.y));
+        let found = out.len();
+        for i in 0..found {
+            let a = prev[out[i] as usize];
+            let p = pos[a as usize];
+            let (x, y) = (self.ix(p.x), self.iy(p.y));
+            if x < x0 || x > x1 || y < y0 || y > y1 {
+                out.push(a);
             }
         }
     }
