@@ -115,9 +115,20 @@ pub fn segment_meets_box(a: Point, b: Point, r: &Aabb) -> bool {
 
 /// Every ring's points.
 pub fn snapshot(set: &ContourSet) -> Rings {
-    let pts: Vec<Vec<Point>> = set.contour_ids().map(|id| set.ring_points(id)).collect();
+    rings_of(
+        &set.contour_ids()
+            .map(|id| set.ring_points(id))
+            .collect::<Vec<_>>(),
+    )
+}
+
+/// Rings from point lists.
+pub fn rings_of(pts: &[Vec<Point>]) -> Rings {
     let boxes = pts.iter().map(|p| Aabb::of(p)).collect();
-    Rings { pts, boxes }
+    Rings {
+        pts: pts.to_vec(),
+        boxes,
+    }
 }
 
 /// Numbers of outer and hole rings.

@@ -12,8 +12,11 @@
 //! - [`contours`]: the ring arena [`ContourSet`] and its broad phase [`contours::VertexBins`];
 //! - [`topology`]: motion regions, Directives 1 and 2, topology events.
 //!
-//! Cargo features: none yet; the desktop app will sit behind a default `gui` feature.
+//! Cargo features: `gui` (default) builds the desktop app ([`app`], eframe/egui); without
+//! it the library and the headless CLI build with no GUI crates.
 
+#[cfg(feature = "gui")]
+pub mod app;
 pub mod check;
 pub mod cli;
 pub mod contours;

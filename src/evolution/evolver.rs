@@ -94,12 +94,15 @@ pub struct Frame {
     pub energy: f64,
     pub active_share: f64,
     pub converged: bool,
+    /// The motion regions (p, o, n, q) of the moves that caused this frame's events.
+    pub motions: Vec<[Point; 4]>,
 }
 
 /// Runs the evolution.
+#[derive(Clone)]
 pub struct Evolver {
     set: ContourSet,
-    pyramid: Pyramid,
+    pyramid: std::sync::Arc<Pyramid>,
     params: Params,
     model: IntensityModel,
     level: usize,
@@ -122,7 +125,7 @@ impl Evolver {
         if init.is_empty() {
             return Err(EvolveError::EmptyInit);
         }
-        let pyramid = Pyramid::new(image, params.coarsest_side, 4);
+        let pyramid = std::sync::Arc::new(Pyramid::new(image, params.coarsest_side, 4));
         let level = pyramid.levels.len() - 1;
         let fine = &pyramid.levels[0];
         let (object_hint, background_hint) = hints(fine, init);
@@ -180,6 +183,9 @@ impl Evolver {
     pub fn is_converged(&self) -> bool {
         self.converged
     }
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
     pub fn events(&self) -> &[FrameEvent] {
         &self.events
     }
@@ -194,6 +200,7 @@ impl Evolver {
         let max_step = self.params.step * scale;
         let w = self.params.weights;
         let mut events = Vec::new();
+        let mut motions = Vec::new();
         let (mut moved_sum, mut energy, mut active, mut visited) = (0.0, 0.0, 0usize, 0usize);
         let order: Vec<u32> = self.set.vertices().collect();
         if self.still.len() < self.set.vertex_capacity() {
@@ -228,7 +235,11 @@ impl Evolver {
             if len > max_step {
                 d = d * (max_step / len);
             }
+            let before = events.len();
             let moved = try_move(&mut self.set, v, x + d, &mut events);
+            if events.len() > before {
+                motions.push([pp, x, pn, x + d]);
+            }
             if moved > 0.05 * scale {
                 active += 1;
                 self.still[v as usize] = 0;
@@ -286,6 +297,7 @@ impl Evolver {
             energy,
             active_share: share,
             converged: self.converged,
+            motions,
         }
     }
 

@@ -1,0 +1,316 @@
+//! The canvas: the image with its contrast window, the contours of the frame on screen
+//! (each ring in its colour, regions filled with holes left open), the user's shapes,
+//! and the motion regions that caused topology events, flashed. Pan with the right or
+//! middle button (or the primary button with the Select tool on empty space), zoom with
+//! the wheel.
+
+use super::{fill, Command, Tool, TopoApp};
+use crate::evolution::Shape;
+use crate::geometry::Point;
+use egui::{Color32, Pos2, Rect, Sense, Stroke, Vec2};
+
+/// View and gesture state.
+#[derive(Default)]
+pub struct CanvasState {
+    /// Screen position of image pixel (0, 0), relative to the canvas's top-left.
+    offset: Vec2,
+    /// Screen points per image pixel; 0 until fitted.
+    zoom: f32,
+    fitted_for: (usize, usize),
+    drag_from_in_image: Option<Point>,
+    drag_to_in_image: Option<Point>,
+    polygon: Vec<Point>,
+    moving: Option<usize>,
+    fill_cache: Option<(usize, usize, fill::FillMesh)>,
+}
+
+fn ring_color(id: u32) -> Color32 {
+    // Golden-angle hues: neighbouring ids get distant colours.
+    let h = (id as f32 * 0.618_034) % 1.0;
+    egui::ecolor::Hsva::new(h, 0.85, 0.95, 1.0).into()
+}
+
+pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
+    let (response, painter) = ui.allocate_painter(ui.available_size(), Sense::click_and_drag());
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Canvas, true, "Canvas"));
+    let rect = response.rect;
+    let Some(image) = app.image.clone() else {
+        painter.text(
+            rect.center(),
+            egui::Align2::CENTER_CENTER,
+            "Open an image (or drop one here)",
+            egui::FontId::proportional(18.0),
+            Color32::GRAY,
+        );
+        return;
+    };
+    let cs = &mut app.canvas;
+    if cs.zoom == 0.0 || cs.fitted_for != (image.width, image.height) {
+        let z = (rect.width() / image.width as f32)
+            .min(rect.height() / image.height as f32)
+            .max(0.05);
+        cs.zoom = z;
+        cs.offset = (rect.size() - Vec2::new(image.width as f32, image.height as f32) * z) * 0.5;
+        cs.fitted_for = (image.width, image.height);
+    }
+    let (zoom, offset) = (cs.zoom, cs.offset);
+    let screen_from_image =
+        move |p: Point| rect.min + offset + Vec2::new(p.x as f32, p.y as f32) * zoom;
+    let image_from_screen = move |s: Pos2| {
+        let v = (s - rect.min - offset) / zoom;
+        Point::new(v.x as f64, v.y as f64)
+    };
+
+    // Zoom about the pointer; pan with secondary/middle drag.
+    if let Some(hover) = response.hover_pos() {
+        let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+        if scroll != 0.0 {
+            let anchor = image_from_screen(hover);
+            let nz = (zoom * (scroll * 0.002).exp()).clamp(0.05, 64.0);
+            cs.zoom = nz;
+            cs.offset = hover - rect.min - Vec2::new(anchor.x as f32, anchor.y as f32) * nz;
+        }
+    }
+    if response.dragged_by(egui::PointerButton::Secondary)
+        || response.dragged_by(egui::PointerButton::Middle)
+    {
+        cs.offset += response.drag_delta();
+    }
+
+    // The image, through the contrast window.
+    if app.texture.is_none() || app.texture_contrast != app.settings.contrast {
+        let (lo, hi) = app.settings.contrast;
+        let span = (hi - lo).max(1e-3);
+        let pixels: Vec<Color32> = image
+            .data
+            .iter()
+            .map(|&v| Color32::from_gray((((v - lo) / span).clamp(0.0, 1.0) * 255.0) as u8))
+            .collect();
+        let img = egui::ColorImage::new([image.width, image.height], pixels);
+        app.texture = Some(
+            ui.ctx()
+                .load_texture("image", img, egui::TextureOptions::NEAREST),
+        );
+        app.texture_contrast = app.settings.contrast;
+    }
+    let img_rect = Rect::from_min_max(
+        screen_from_image(Point::new(0.0, 0.0)),
+        screen_from_image(Point::new(image.width as f64, image.height as f64)),
+    );
+    if let Some(t) = &app.texture {
+        painter.image(
+            t.id(),
+            img_rect,
+            Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0)),
+            Color32::WHITE,
+        );
+    }
+
+    // Contours of the frame on screen.
+    let cs = &mut app.canvas;
+    if let Some(rec) = app.run.as_ref().and_then(|r| r.history.get(app.shown)) {
+        if app.settings.show_fill {
+            let key = (rec.index, rec.vertices);
+            let stale = cs
+                .fill_cache
+                .as_ref()
+                .is_none_or(|(i, v, _)| (*i, *v) != key);
+            if stale {
+                cs.fill_cache = Some((key.0, key.1, fill::FillMesh::of(&rec.rings)));
+            }
+            if let Some((_, _, m)) = &cs.fill_cache {
+                painter.add(m.to_mesh(
+                    &screen_from_image,
+                    Color32::from_rgba_unmultiplied(255, 170, 60, 60),
+                ));
+            }
+        }
+        for r in &rec.rings {
+            let mut pts: Vec<Pos2> = r.points.iter().map(|&p| screen_from_image(p)).collect();
+            pts.push(pts[0]);
+            let c = ring_color(r.id);
+            painter.add(egui::Shape::line(
+                pts,
+                Stroke::new(if r.hole { 1.5 } else { 2.0 }, c),
+            ));
+        }
+        // Flash the motion regions of this frame's events (and the few before it).
+        let run = app.run.as_ref().expect("record exists");
+        for back in 0..6usize {
+            let Some(old) = app.shown.checked_sub(back).and_then(|i| run.history.get(i)) else {
+                break;
+            };
+            let alpha = 255 - back as u8 * 40;
+            for q in &old.motions {
+                let pts: Vec<Pos2> = q.iter().map(|&p| screen_from_image(p)).collect();
+                painter.add(egui::Shape::closed_line(
+                    pts,
+                    Stroke::new(2.5, Color32::from_rgba_unmultiplied(255, 40, 200, alpha)),
+                ));
+                painter.circle_stroke(
+                    screen_from_image(q[3]),
+                    10.0 - back as f32,
+                    Stroke::new(2.0, Color32::from_rgba_unmultiplied(255, 40, 200, alpha)),
+                );
+            }
+        }
+    }
+
+    // The user's shapes (only before a run moves them away).
+    for (i, s) in app.shapes.iter().enumerate() {
+        let sel = app.selected == Some(i);
+        let stroke = Stroke::new(
+            if sel { 2.5 } else { 1.5 },
+            if sel {
+                Color32::YELLOW
+            } else {
+                Color32::from_rgb(80, 200, 255)
+            },
+        );
+        match s {
+            Shape::Disk { center, radius } => {
+                painter.circle_stroke(screen_from_image(*center), *radius as f32 * zoom, stroke);
+                painter.circle_filled(screen_from_image(*center), 2.0, stroke.color);
+            }
+            Shape::Rect { min, max } => {
+                painter.rect_stroke(
+                    Rect::from_min_max(screen_from_image(*min), screen_from_image(*max)),
+                    0.0,
+                    stroke,
+                    egui::StrokeKind::Middle,
+                );
+            }
+            Shape::Polygon(p) => {
+                painter.add(egui::Shape::closed_line(
+                    p.iter().map(|&q| screen_from_image(q)).collect(),
+                    stroke,
+                ));
+            }
+        }
+    }
+
+    // Tools.
+    let tool = app.settings.tool;
+    let pointer = response.interact_pointer_pos().or(response.hover_pos());
+    let primary_down = response.drag_started_by(egui::PointerButton::Primary);
+    if primary_down {
+        if let Some(p) = pointer {
+            let at = image_from_screen(p);
+            cs.drag_from_in_image = Some(at);
+            cs.drag_to_in_image = Some(at);
+            if tool == Tool::Select {
+                cs.moving = hit_shape(&app.shapes, at, 6.0 / zoom as f64);
+                app.commands.push(Command::Select(cs.moving));
+            }
+        }
+    }
+    if response.dragged_by(egui::PointerButton::Primary) {
+        if let (Some(p), Some(_)) = (pointer, cs.drag_from_in_image) {
+            cs.drag_to_in_image = Some(image_from_screen(p));
+        }
+    }
+    if let (Some(a), Some(b)) = (cs.drag_from_in_image, cs.drag_to_in_image) {
+        match tool {
+            Tool::Seed => {
+                painter.circle_stroke(
+                    screen_from_image(a),
+                    (a.dist(b) as f32 * zoom).max(2.0),
+                    Stroke::new(1.5, Color32::YELLOW),
+                );
+            }
+            Tool::Rect => {
+                painter.rect_stroke(
+                    Rect::from_two_pos(screen_from_image(a), screen_from_image(b)),
+                    0.0,
+                    Stroke::new(1.5, Color32::YELLOW),
+                    egui::StrokeKind::Middle,
+                );
+            }
+            _ => {}
+        }
+    }
+    let released = response.drag_stopped_by(egui::PointerButton::Primary) || response.clicked();
+    if released {
+        let end = pointer.map(image_from_screen);
+        let start = cs.drag_from_in_image.take().or(end);
+        let stop = cs.drag_to_in_image.take().or(end);
+        if let (Some(a), Some(b)) = (start, stop) {
+            let inside = |p: Point| {
+                p.x >= 0.0 && p.y >= 0.0 && p.x <= image.width as f64 && p.y <= image.height as f64
+            };
+            match tool {
+                Tool::Seed if inside(a) => {
+                    // A click makes a seed of default radius; a drag sets the radius.
+                    let r = if a.dist(b) < 2.0 { 5.0 } else { a.dist(b) };
+                    app.commands.push(Command::AddShape(Shape::Disk {
+                        center: a,
+                        radius: r,
+                    }));
+                }
+                Tool::Rect if a.dist(b) >= 3.0 => {
+                    let min = Point::new(a.x.min(b.x).max(0.0), a.y.min(b.y).max(0.0));
+                    let max = Point::new(
+                        a.x.max(b.x).min(image.width as f64),
+                        a.y.max(b.y).min(image.height as f64),
+                    );
+                    app.commands
+                        .push(Command::AddShape(Shape::Rect { min, max }));
+                }
+                Tool::Polygon if inside(b) => {
+                    let close =
+                        cs.polygon.len() >= 3 && (b.dist(cs.polygon[0]) * zoom as f64) < 8.0;
+                    if close || response.double_clicked() {
+                        if cs.polygon.len() >= 3 {
+                            app.commands
+                                .push(Command::AddShape(Shape::Polygon(std::mem::take(
+                                    &mut cs.polygon,
+                                ))));
+                        }
+                    } else {
+                        cs.polygon.push(b);
+                    }
+                }
+                Tool::Select => {
+                    if let Some(i) = cs.moving.take() {
+                        if a.dist(b) > 0.0 {
+                            app.commands.push(Command::MoveShape {
+                                index: i,
+                                by: b - a,
+                            });
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    if !cs.polygon.is_empty() {
+        let mut pts: Vec<Pos2> = cs.polygon.iter().map(|&p| screen_from_image(p)).collect();
+        if let Some(h) = response.hover_pos() {
+            pts.push(h);
+        }
+        painter.add(egui::Shape::line(pts, Stroke::new(1.5, Color32::YELLOW)));
+    }
+}
+
+/// The shape under `at` (within `tol` image pixels of its outline or centre).
+fn hit_shape(shapes: &[Shape], at: Point, tol: f64) -> Option<usize> {
+    shapes.iter().enumerate().rev().find_map(|(i, s)| {
+        let hit = match s {
+            Shape::Disk { center, radius } => at.dist(*center) <= radius + tol,
+            Shape::Rect { min, max } => {
+                let near_x = at.x >= min.x - tol && at.x <= max.x + tol;
+                let near_y = at.y >= min.y - tol && at.y <= max.y + tol;
+                let on_edge = (at.x - min.x).abs() < tol
+                    || (at.x - max.x).abs() < tol
+                    || (at.y - min.y).abs() < tol
+                    || (at.y - max.y).abs() < tol;
+                near_x && near_y && on_edge
+            }
+            Shape::Polygon(p) => {
+                crate::check::region_has(&crate::check::rings_of(std::slice::from_ref(p)), at)
+            }
+        };
+        hit.then_some(i)
+    })
+}

@@ -1,0 +1,677 @@
+//! The desktop app (DESIGN layer 6): state structs, their `ui`, and a [`Command`] enum
+//! applied once per frame. The engine does all geometry; this module only draws it and
+//! turns input into commands.
+
+mod canvas;
+mod fill;
+mod panels;
+
+use crate::evolution::{Evolver, Field, ForceWeights, Params, Polarity, Shape};
+use crate::geometry::Point;
+use crate::io::{load_image, write_atomic, Outputs};
+use crate::topology::TopologyEvent;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// The bundled sample shown on first start.
+pub const SAMPLE_PNG: &[u8] = include_bytes!("../../assets/cells.png");
+
+/// What a click on the canvas does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Tool {
+    /// Click for a seed disk, drag to set its radius.
+    Seed,
+    /// Drag a rectangle.
+    Rect,
+    /// Click polygon corners; double-click (or click the first corner) to close.
+    Polygon,
+    /// Select, drag or delete seeds and shapes.
+    Select,
+}
+
+/// What an export writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ExportKind {
+    Svg,
+    GeoJson,
+    Mask,
+    Csv,
+}
+
+impl ExportKind {
+    pub fn extension(self) -> &'static str {
+        match self {
+            ExportKind::Svg => "svg",
+            ExportKind::GeoJson => "geojson",
+            ExportKind::Mask => "png",
+            ExportKind::Csv => "csv",
+        }
+    }
+}
+
+/// Everything a widget can ask for; applied in one place, [`TopoApp::apply`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum Command {
+    OpenImage(PathBuf),
+    /// Open a file dialog and then the chosen image.
+    OpenDialog,
+    AddShape(Shape),
+    MoveShape {
+        index: usize,
+        by: Point,
+    },
+    DeleteShape(usize),
+    Select(Option<usize>),
+    SetTool(Tool),
+    WrapBorder(f64),
+    Play,
+    Pause,
+    Step(usize),
+    Reset,
+    /// Show recorded frame `n` (0: the initialisation).
+    SeekFrame(usize),
+    Export(ExportKind, PathBuf),
+    ExportDialog(ExportKind),
+    SetPolarity(Polarity),
+    ResetParameters,
+}
+
+/// Settings kept between runs (eframe persistence).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct Settings {
+    pub polarity: Polarity,
+    pub weights: ForceWeights,
+    pub step: f64,
+    pub min_area: f64,
+    /// Frames per second while playing.
+    pub speed: f32,
+    pub tool: Tool,
+    pub contrast: (f32, f32),
+    pub show_fill: bool,
+    pub last_dir: Option<PathBuf>,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        let p = Params::default();
+        Settings {
+            polarity: Polarity::Dark,
+            weights: p.weights,
+            step: p.step,
+            min_area: p.min_area,
+            speed: 30.0,
+            tool: Tool::Seed,
+            contrast: (0.0, 1.0),
+            show_fill: true,
+            last_dir: None,
+        }
+    }
+}
+
+/// One ring as recorded for display.
+#[derive(Clone, Debug)]
+pub struct RingView {
+    pub id: u32,
+    pub hole: bool,
+    pub points: Vec<Point>,
+}
+
+/// A recorded frame: enough to draw it and to plot its statistics.
+#[derive(Clone, Debug)]
+pub struct FrameRecord {
+    pub index: usize,
+    pub rings: Vec<RingView>,
+    pub events: Vec<TopologyEvent>,
+    pub motions: Vec<[Point; 4]>,
+    pub area: f64,
+    pub contours: usize,
+    pub vertices: usize,
+    pub energy: f64,
+    pub converged: bool,
+}
+
+impl FrameRecord {
+    fn of(
+        ev: &Evolver,
+        index: usize,
+        events: Vec<TopologyEvent>,
+        motions: Vec<[Point; 4]>,
+        energy: f64,
+        converged: bool,
+    ) -> Self {
+        let set = ev.contours();
+        let rings = set
+            .contour_ids()
+            .map(|id| RingView {
+                id: id.0,
+                hole: set.is_hole(id),
+                points: set.ring_points(id),
+            })
+            .collect();
+        FrameRecord {
+            index,
+            rings,
+            events,
+            motions,
+            area: set.region_area(),
+            contours: set.contour_count(),
+            vertices: set.vertex_count(),
+            energy,
+            converged,
+        }
+    }
+}
+
+/// An evolution in progress with its recorded history.
+pub struct Run {
+    pub evolver: Evolver,
+    /// Frame 0 is the initialisation.
+    pub history: Vec<FrameRecord>,
+    /// Evolver states every few frames, to continue from any recorded frame.
+    checkpoints: Vec<(usize, Evolver)>,
+}
+
+const CHECKPOINT_EVERY: usize = 10;
+
+impl Run {
+    fn new(evolver: Evolver) -> Self {
+        let first = FrameRecord::of(&evolver, 0, Vec::new(), Vec::new(), 0.0, false);
+        Run {
+            checkpoints: vec![(0, evolver.clone())],
+            evolver,
+            history: vec![first],
+        }
+    }
+
+    /// The frame the evolver is at.
+    pub fn head(&self) -> usize {
+        self.evolver.frames()
+    }
+
+    fn step(&mut self) -> &FrameRecord {
+        let f = self.evolver.step();
+        let rec = FrameRecord::of(
+            &self.evolver,
+            f.index,
+            f.events,
+            f.motions,
+            f.energy,
+            f.converged,
+        );
+        self.history.truncate(f.index);
+        self.history.push(rec);
+        if f.index % CHECKPOINT_EVERY == 0 {
+            self.checkpoints.retain(|(i, _)| *i < f.index);
+            self.checkpoints.push((f.index, self.evolver.clone()));
+        }
+        self.history.last().expect("just pushed")
+    }
+
+    /// Puts the evolver back at recorded frame `n`, so stepping continues from there.
+    fn rewind(&mut self, n: usize) {
+        if n == self.head() {
+            return;
+        }
+        let (at, ev) = self
+            .checkpoints
+            .iter()
+            .rev()
+            .find(|(i, _)| *i <= n)
+            .cloned()
+            .expect("frame 0 is a checkpoint");
+        self.evolver = ev;
+        let mut i = at;
+        while i < n {
+            self.evolver.step();
+            i += 1;
+        }
+        self.history.truncate(n + 1);
+        self.checkpoints.retain(|(i, _)| *i <= n);
+    }
+}
+
+/// The whole app state.
+pub struct TopoApp {
+    pub image_name: String,
+    pub image: Option<Arc<Field>>,
+    texture: Option<egui::TextureHandle>,
+    texture_contrast: (f32, f32),
+    pub shapes: Vec<Shape>,
+    pub selected: Option<usize>,
+    pub settings: Settings,
+    pub run: Option<Run>,
+    /// The recorded frame on screen.
+    pub shown: usize,
+    pub playing: bool,
+    play_clock: f64,
+    pub log: Vec<(usize, TopologyEvent)>,
+    pub error: Option<String>,
+    pub notice: Option<String>,
+    /// Time of the last frame step, ms.
+    pub step_ms: f64,
+    /// Time spent drawing the canvas last frame, ms.
+    pub draw_ms: f64,
+    pub commands: Vec<Command>,
+    canvas: canvas::CanvasState,
+}
+
+impl Default for TopoApp {
+    fn default() -> Self {
+        TopoApp {
+            image_name: String::new(),
+            image: None,
+            texture: None,
+            texture_contrast: (0.0, 1.0),
+            shapes: Vec::new(),
+            selected: None,
+            settings: Settings::default(),
+            run: None,
+            shown: 0,
+            playing: false,
+            play_clock: 0.0,
+            log: Vec::new(),
+            error: None,
+            notice: None,
+            step_ms: 0.0,
+            draw_ms: 0.0,
+            commands: Vec::new(),
+            canvas: canvas::CanvasState::default(),
+        }
+    }
+}
+
+/// Decodes image bytes (the bundled sample) into a field.
+fn field_from_bytes(bytes: &[u8]) -> Result<Field, String> {
+    let img = image::load_from_memory(bytes)
+        .map_err(|e| e.to_string())?
+        .to_luma16();
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    Ok(Field::new(
+        w,
+        h,
+        img.as_raw().iter().map(|&v| v as f32 / 65535.0).collect(),
+    ))
+}
+
+impl TopoApp {
+    /// The app with the bundled sample loaded and a wrap rectangle ready.
+    pub fn with_sample() -> Self {
+        let mut app = TopoApp::default();
+        let field = field_from_bytes(SAMPLE_PNG).expect("bundled sample decodes");
+        app.set_image(field, "cells.png (sample)".into());
+        app.apply_now(Command::WrapBorder(6.0));
+        app
+    }
+
+    /// The app with settings restored and `image` opened (or the sample).
+    pub fn new(settings: Option<Settings>, image: Option<PathBuf>) -> Self {
+        let mut app = TopoApp::with_sample();
+        if let Some(s) = settings {
+            app.settings = s;
+        }
+        if let Some(p) = image {
+            app.apply_now(Command::OpenImage(p));
+        }
+        app
+    }
+
+    fn set_image(&mut self, field: Field, name: String) {
+        self.image = Some(Arc::new(field));
+        self.image_name = name;
+        self.texture = None;
+        self.shapes.clear();
+        self.selected = None;
+        self.reset_run();
+    }
+
+    fn reset_run(&mut self) {
+        self.run = None;
+        self.shown = 0;
+        self.playing = false;
+        self.log.clear();
+    }
+
+    pub fn params(&self) -> Params {
+        Params {
+            polarity: self.settings.polarity,
+            weights: self.settings.weights,
+            step: self.settings.step,
+            min_area: self.settings.min_area,
+            ..Params::default()
+        }
+    }
+
+    /// Starts a run from the current shapes if there is none.
+    fn ensure_run(&mut self) -> bool {
+        if self.run.is_some() {
+            return true;
+        }
+        let Some(image) = &self.image else {
+            self.error = Some("open an image first".into());
+            return false;
+        };
+        match Evolver::new(image, &self.shapes, self.params()) {
+            Ok(ev) => {
+                self.run = Some(Run::new(ev));
+                self.shown = 0;
+                self.log.clear();
+                true
+            }
+            Err(e) => {
+                self.error = Some(e.to_string());
+                self.playing = false;
+                false
+            }
+        }
+    }
+
+    /// Advances `n` frames (from the frame on screen), recording each.
+    fn step_frames(&mut self, n: usize) {
+        if !self.ensure_run() {
+            return;
+        }
+        let run = self.run.as_mut().expect("ensured");
+        if self.shown != run.head() {
+            run.rewind(self.shown);
+            self.log.retain(|(f, _)| *f <= self.shown);
+        }
+        let t = std::time::Instant::now();
+        for _ in 0..n {
+            if run.evolver.is_converged() {
+                self.playing = false;
+                break;
+            }
+            let rec = run.step();
+            for &e in &rec.events {
+                self.log.push((rec.index, e));
+            }
+        }
+        self.step_ms = t.elapsed().as_secs_f64() * 1e3 / n.max(1) as f64;
+        self.shown = run.head();
+    }
+
+    /// The record on screen, if a run exists.
+    pub fn shown_record(&self) -> Option<&FrameRecord> {
+        self.run.as_ref().and_then(|r| r.history.get(self.shown))
+    }
+
+    /// Queues a command for this frame's [`TopoApp::apply`].
+    pub fn send(&mut self, c: Command) {
+        self.commands.push(c);
+    }
+
+    /// Applies every queued command.
+    pub fn apply(&mut self) {
+        let cmds = std::mem::take(&mut self.commands);
+        for c in cmds {
+            self.apply_now(c);
+        }
+    }
+
+    fn apply_now(&mut self, c: Command) {
+        match c {
+            Command::OpenImage(p) => match load_image(&p) {
+                Ok(f) => {
+                    let name = p
+                        .file_name()
+                        .map(|n| n.to_string_lossy().into_owned())
+                        .unwrap_or_default();
+                    self.settings.last_dir = p.parent().map(Path::to_path_buf);
+                    self.set_image(f, name);
+                    self.error = None;
+                }
+                Err(e) => self.error = Some(e.to_string()),
+            },
+            Command::OpenDialog => {
+                let mut d = rfd::FileDialog::new()
+                    .add_filter("images", &["png", "jpg", "jpeg", "tif", "tiff"]);
+                if let Some(dir) = &self.settings.last_dir {
+                    d = d.set_directory(dir);
+                }
+                match d.pick_file() {
+                    Some(p) => self.apply_now(Command::OpenImage(p)),
+                    None => {
+                        self.notice = Some("no file chosen (is a desktop portal running?)".into())
+                    }
+                }
+            }
+            Command::AddShape(s) => {
+                self.shapes.push(s);
+                self.selected = Some(self.shapes.len() - 1);
+                self.reset_run();
+            }
+            Command::MoveShape { index, by } => {
+                if let Some(s) = self.shapes.get_mut(index) {
+                    *s = match s.clone() {
+                        Shape::Disk { center, radius } => Shape::Disk {
+                            center: center + by,
+                            radius,
+                        },
+                        Shape::Rect { min, max } => Shape::Rect {
+                            min: min + by,
+                            max: max + by,
+                        },
+                        Shape::Polygon(p) => {
+                            Shape::Polygon(p.into_iter().map(|q| q + by).collect())
+                        }
+                    };
+                    self.reset_run();
+                }
+            }
+            Command::DeleteShape(i) => {
+                if i < self.shapes.len() {
+                    self.shapes.remove(i);
+                    self.selected = None;
+                    self.reset_run();
+                }
+            }
+            Command::Select(i) => self.selected = i,
+            Command::SetTool(t) => self.settings.tool = t,
+            Command::WrapBorder(m) => {
+                if let Some(img) = &self.image {
+                    let (w, h) = (img.width as f64, img.height as f64);
+                    let m = m.min(0.25 * w.min(h));
+                    self.shapes.push(Shape::Rect {
+                        min: Point::new(m, m),
+                        max: Point::new(w - m, h - m),
+                    });
+                    self.reset_run();
+                }
+            }
+            Command::Play => {
+                if self.ensure_run() {
+                    self.playing = true;
+                }
+            }
+            Command::Pause => self.playing = false,
+            Command::Step(n) => self.step_frames(n),
+            Command::Reset => self.reset_run(),
+            Command::SeekFrame(n) => {
+                if let Some(r) = &self.run {
+                    self.shown = n.min(r.history.len() - 1);
+                    self.playing = false;
+                }
+            }
+            Command::Export(kind, path) => {
+                if let Err(e) = self.export(kind, &path) {
+                    self.error = Some(e);
+                } else {
+                    self.notice = Some(format!("wrote {}", path.display()));
+                }
+            }
+            Command::ExportDialog(kind) => {
+                let mut d = rfd::FileDialog::new()
+                    .add_filter(kind.extension(), &[kind.extension()])
+                    .set_file_name(format!("contours.{}", kind.extension()));
+                if let Some(dir) = &self.settings.last_dir {
+                    d = d.set_directory(dir);
+                }
+                match d.save_file() {
+                    Some(p) => self.apply_now(Command::Export(kind, p)),
+                    None => self.notice = Some("export cancelled (no file chosen)".into()),
+                }
+            }
+            Command::SetPolarity(p) => {
+                self.settings.polarity = p;
+                self.reset_run();
+            }
+            Command::ResetParameters => {
+                let d = Settings::default();
+                self.settings.weights = d.weights;
+                self.settings.step = d.step;
+                self.settings.min_area = d.min_area;
+                self.reset_run();
+            }
+        }
+    }
+
+    /// Writes the frame on screen (the evolver's state at it) to `path`.
+    fn export(&mut self, kind: ExportKind, path: &Path) -> Result<(), String> {
+        let Some(run) = self.run.as_mut() else {
+            return Err("nothing to export yet: run the evolution first".into());
+        };
+        run.rewind(self.shown);
+        let ev = &run.evolver;
+        let (w, h) = ev.size();
+        let mut set = ev.contours().clone();
+        crate::evolution::measure::drop_small(&mut set, self.settings.min_area);
+        let out = Outputs {
+            set: &set,
+            width: w,
+            height: h,
+            frames: ev.frames(),
+            converged: ev.is_converged(),
+            events: ev.events(),
+        };
+        let bytes = match kind {
+            ExportKind::Svg => out.svg().into_bytes(),
+            ExportKind::GeoJson => out.geojson().into_bytes(),
+            ExportKind::Mask => out.mask_png(),
+            ExportKind::Csv => out.csv().into_bytes(),
+        };
+        write_atomic(path, &bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))
+    }
+
+    /// Advances playback by the time since the last frame.
+    fn tick(&mut self, dt: f64) {
+        if !self.playing {
+            return;
+        }
+        self.play_clock += dt * self.settings.speed as f64;
+        let n = (self.play_clock.floor() as usize).clamp(1, 50);
+        self.play_clock = (self.play_clock - n as f64).max(0.0);
+        self.step_frames(n);
+    }
+
+    /// The window title.
+    pub fn title(&self) -> String {
+        match &self.run {
+            Some(r) => format!(
+                "topocontour — {} — frame {}",
+                self.image_name,
+                self.shown.min(r.history.len() - 1)
+            ),
+            None => format!("topocontour — {}", self.image_name),
+        }
+    }
+
+    /// The whole app in a `Ui` (the eframe window's, or a test harness's).
+    pub fn ui(&mut self, ui: &mut egui::Ui) {
+        let dt = ui.input(|i| i.stable_dt) as f64;
+        self.keyboard(ui);
+        panels::top_bar(self, ui);
+        panels::bottom_bar(self, ui);
+        panels::side_panel(self, ui);
+        egui::CentralPanel::default().show(ui, |ui| {
+            let t = std::time::Instant::now();
+            canvas::canvas_ui(self, ui);
+            self.draw_ms = t.elapsed().as_secs_f64() * 1e3;
+        });
+        self.apply();
+        self.tick(dt);
+        if self.playing {
+            ui.ctx().request_repaint();
+        }
+    }
+
+    fn keyboard(&mut self, ui: &egui::Ui) {
+        if ui.ctx().egui_wants_keyboard_input() {
+            return;
+        }
+        let (space, right, del) = ui.input(|i| {
+            (
+                i.key_pressed(egui::Key::Space),
+                i.key_pressed(egui::Key::ArrowRight),
+                i.key_pressed(egui::Key::Delete),
+            )
+        });
+        if space {
+            self.send(if self.playing {
+                Command::Pause
+            } else {
+                Command::Play
+            });
+        }
+        if right {
+            self.send(Command::Step(1));
+        }
+        if del {
+            if let Some(i) = self.selected {
+                self.send(Command::DeleteShape(i));
+            }
+        }
+        let dropped: Vec<PathBuf> = ui.input(|i| {
+            i.raw
+                .dropped_files
+                .iter()
+                .map(|f| f.path().to_path_buf())
+                .filter(|p| !p.as_os_str().is_empty())
+                .collect()
+        });
+        if let Some(p) = dropped.into_iter().next() {
+            self.send(Command::OpenImage(p));
+        }
+    }
+}
+
+/// The eframe wrapper: persistence and the window title.
+struct EframeApp {
+    app: TopoApp,
+}
+
+impl eframe::App for EframeApp {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        let title = self.app.title();
+        ui.ctx()
+            .send_viewport_cmd(egui::ViewportCommand::Title(title));
+        self.app.ui(ui);
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        eframe::set_value(storage, eframe::APP_KEY, &self.app.settings);
+    }
+}
+
+/// Opens the desktop window (on `image`, or the bundled sample).
+pub fn run_app(image: Option<PathBuf>) -> Result<(), String> {
+    let options = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_inner_size([1280.0, 820.0])
+            .with_title("topocontour"),
+        ..Default::default()
+    };
+    eframe::run_native(
+        "topocontour",
+        options,
+        Box::new(move |cc| {
+            let settings = cc
+                .storage
+                .and_then(|s| eframe::get_value::<Settings>(s, eframe::APP_KEY));
+            Ok(Box::new(EframeApp {
+                app: TopoApp::new(settings, image),
+            }))
+        }),
+    )
+    .map_err(|e| e.to_string())
+}

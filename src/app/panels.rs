@@ -1,0 +1,232 @@
+//! Tool bar, side panel (parameters, event log, plots), timeline and status bar. Widgets
+//! only send [`Command`]s or edit settings.
+
+use super::{Command, ExportKind, Tool, TopoApp};
+use crate::evolution::Polarity;
+use egui_plot::{Legend, Line, Plot, PlotPoints};
+
+pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
+    egui::Panel::top("toolbar").show(ui, |ui| {
+        ui.horizontal_wrapped(|ui| {
+            if ui.button("Open…").clicked() {
+                app.send(Command::OpenDialog);
+            }
+            ui.menu_button("Export", |ui| {
+                for (label, kind) in [
+                    ("SVG…", ExportKind::Svg),
+                    ("GeoJSON…", ExportKind::GeoJson),
+                    ("Mask PNG…", ExportKind::Mask),
+                    ("Measurements CSV…", ExportKind::Csv),
+                ] {
+                    if ui.button(label).clicked() {
+                        app.send(Command::ExportDialog(kind));
+                        ui.close();
+                    }
+                }
+            });
+            ui.separator();
+            for (label, tool) in [
+                ("Seed", Tool::Seed),
+                ("Rectangle", Tool::Rect),
+                ("Polygon", Tool::Polygon),
+                ("Select", Tool::Select),
+            ] {
+                if ui
+                    .selectable_label(app.settings.tool == tool, label)
+                    .clicked()
+                {
+                    app.send(Command::SetTool(tool));
+                }
+            }
+            if ui.button("Wrap border").clicked() {
+                app.send(Command::WrapBorder(6.0));
+            }
+            if let Some(i) = app.selected {
+                if ui.button("Delete shape").clicked() {
+                    app.send(Command::DeleteShape(i));
+                }
+            }
+            ui.separator();
+            let polarity = app.settings.polarity;
+            for (label, p) in [
+                ("Dark objects", Polarity::Dark),
+                ("Bright objects", Polarity::Bright),
+            ] {
+                if ui.selectable_label(polarity == p, label).clicked() && polarity != p {
+                    app.send(Command::SetPolarity(p));
+                }
+            }
+            ui.label("Engine: adaptive");
+            ui.separator();
+            if app.playing {
+                if ui.button("Pause").clicked() {
+                    app.send(Command::Pause);
+                }
+            } else if ui.button("Play").clicked() {
+                app.send(Command::Play);
+            }
+            if ui.button("Step").clicked() {
+                app.send(Command::Step(1));
+            }
+            if ui.button("Step 10").clicked() {
+                app.send(Command::Step(10));
+            }
+            if ui.button("Reset").clicked() {
+                app.send(Command::Reset);
+            }
+            ui.add(
+                egui::Slider::new(&mut app.settings.speed, 1.0..=240.0)
+                    .logarithmic(true)
+                    .text("frames/s"),
+            );
+        });
+    });
+}
+
+pub fn bottom_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
+    egui::Panel::bottom("status").show(ui, |ui| {
+        if let Some(run) = &app.run {
+            let last = run.history.len() - 1;
+            let mut shown = app.shown.min(last);
+            ui.horizontal(|ui| {
+                ui.label("Timeline");
+                let w = ui.available_width() - 80.0;
+                ui.spacing_mut().slider_width = w.max(100.0);
+                if ui.add(egui::Slider::new(&mut shown, 0..=last).text("frame")).changed() {
+                    app.send(Command::SeekFrame(shown));
+                }
+            });
+        }
+        ui.horizontal(|ui| {
+            let rec = app.shown_record();
+            let (frame, verts, contours, area) = rec.map_or((0, 0, 0, 0.0), |r| (r.index, r.vertices, r.contours, r.area));
+            ui.label(format!(
+                "{}  |  frame {frame}  |  {verts} vertices  |  {contours} contours  |  area {area:.0} px²  |  step {:.2} ms  draw {:.2} ms{}",
+                app.image_name,
+                app.step_ms,
+                app.draw_ms,
+                if rec.is_some_and(|r| r.converged) { "  |  converged" } else { "" }
+            ));
+            if let Some(e) = &app.error {
+                ui.colored_label(egui::Color32::from_rgb(255, 90, 90), format!("Error: {e}"));
+            } else if let Some(n) = &app.notice {
+                ui.label(n);
+            }
+        });
+    });
+}
+
+pub fn side_panel(app: &mut TopoApp, ui: &mut egui::Ui) {
+    egui::Panel::right("side")
+        .default_size(330.0)
+        .show(ui, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                ui.collapsing("Parameters", |ui| {
+                    let s = &mut app.settings;
+                    let mut changed = false;
+                    changed |= ui
+                        .add(egui::Slider::new(&mut s.weights.region, 0.0..=2.0).text("region"))
+                        .changed();
+                    changed |= ui
+                        .add(egui::Slider::new(&mut s.weights.balloon, 0.0..=1.0).text("balloon"))
+                        .changed();
+                    changed |= ui
+                        .add(egui::Slider::new(&mut s.weights.edge, 0.0..=1.0).text("edge"))
+                        .changed();
+                    changed |= ui
+                        .add(egui::Slider::new(&mut s.weights.stretch, 0.0..=1.0).text("stretch"))
+                        .changed();
+                    changed |= ui
+                        .add(egui::Slider::new(&mut s.weights.bend, 0.0..=0.5).text("bend"))
+                        .changed();
+                    changed |= ui
+                        .add(egui::Slider::new(&mut s.step, 0.1..=1.5).text("step (× grid)"))
+                        .changed();
+                    ui.add(
+                        egui::Slider::new(&mut s.min_area, 0.0..=500.0)
+                            .text("min area px² (export)"),
+                    );
+                    ui.add(egui::Slider::new(&mut s.contrast.0, 0.0..=1.0).text("contrast low"));
+                    ui.add(egui::Slider::new(&mut s.contrast.1, 0.0..=1.0).text("contrast high"));
+                    ui.checkbox(&mut s.show_fill, "Fill regions");
+                    if ui.button("Reset parameters").clicked() {
+                        app.commands.push(Command::ResetParameters);
+                    }
+                    if changed {
+                        app.commands.push(Command::Reset);
+                    }
+                });
+                egui::CollapsingHeader::new("Event log")
+                    .default_open(true)
+                    .show(ui, |ui| {
+                        if app.log.is_empty() {
+                            ui.label("No topology events yet.");
+                        }
+                        let mut seek = None;
+                        egui::ScrollArea::vertical()
+                            .id_salt("log")
+                            .max_height(220.0)
+                            .show(ui, |ui| {
+                                for (frame, e) in &app.log {
+                                    let ids: Vec<String> =
+                                        e.contours().iter().map(|c| c.to_string()).collect();
+                                    let text = format!(
+                                        "frame {frame}: {} [{}]",
+                                        e.kind().replace('_', " "),
+                                        ids.join(", ")
+                                    );
+                                    if ui.selectable_label(app.shown == *frame, text).clicked() {
+                                        seek = Some(*frame);
+                                    }
+                                }
+                            });
+                        if let Some(f) = seek {
+                            app.send(Command::SeekFrame(f));
+                        }
+                    })
+                    .header_response
+                    .widget_info(|| {
+                        egui::WidgetInfo::labeled(egui::Role::Button, true, "Event log")
+                    });
+                egui::CollapsingHeader::new("Plots")
+                    .default_open(true)
+                    .show(ui, |ui| plots_ui(app, ui));
+            });
+        });
+}
+
+fn plots_ui(app: &TopoApp, ui: &mut egui::Ui) {
+    let Some(run) = &app.run else {
+        ui.label("Plots appear once the evolution runs.");
+        return;
+    };
+    let h = &run.history;
+    let series = |f: &dyn Fn(&super::FrameRecord) -> f64| -> PlotPoints {
+        h.iter().map(|r| [r.index as f64, f(r)]).collect()
+    };
+    let area_max = h.iter().map(|r| r.area).fold(1.0, f64::max);
+    let energy_max = h.iter().map(|r| r.energy).fold(1.0, f64::max);
+    Plot::new("area")
+        .height(120.0)
+        .legend(Legend::default())
+        .show(ui, |p| {
+            p.line(Line::new(
+                "area (normalised)",
+                series(&|r| r.area / area_max),
+            ));
+            p.line(Line::new(
+                "energy (normalised)",
+                series(&|r| r.energy / energy_max),
+            ));
+        });
+    Plot::new("counts")
+        .height(120.0)
+        .legend(Legend::default())
+        .show(ui, |p| {
+            p.line(Line::new("contours", series(&|r| r.contours as f64)));
+            p.line(Line::new(
+                "vertices / 100",
+                series(&|r| r.vertices as f64 / 100.0),
+            ));
+        });
+}

@@ -1,0 +1,162 @@
+//! The desktop app driven headless with egui_kittest: the real `TopoApp::ui`, real
+//! clicks on real widgets, assertions on its state.
+#![cfg(feature = "gui")]
+
+use egui_kittest::kittest::Queryable;
+use egui_kittest::Harness;
+use topocontour::app::{Command, ExportKind, Tool, TopoApp};
+use topocontour::evolution::Shape;
+
+fn harness(app: TopoApp) -> Harness<'static, TopoApp> {
+    Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .build_ui_state(|ui, app: &mut TopoApp| app.ui(ui), app)
+}
+
+fn case_image(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/cases")
+        .join(name)
+        .join("image.png")
+}
+
+/// Clicks the canvas at `pos` (press and release on successive frames).
+fn click_at(h: &mut Harness<'_, TopoApp>, pos: egui::Pos2) {
+    h.hover_at(pos);
+    h.step();
+    h.drag_at(pos);
+    h.step();
+    h.drop_at(pos);
+    h.step();
+    h.step();
+}
+
+#[test]
+fn starts_with_the_sample_and_a_wrap_rectangle() {
+    let mut h = harness(TopoApp::with_sample());
+    h.step();
+    assert!(h.state().image.is_some());
+    assert!(matches!(h.state().shapes[..], [Shape::Rect { .. }]));
+    h.get_by_label("Canvas");
+}
+
+#[test]
+fn clicking_on_the_canvas_adds_a_seed() {
+    let mut h = harness(TopoApp::with_sample());
+    h.step();
+    h.get_by_label("Seed").click();
+    h.step();
+    assert_eq!(h.state().settings.tool, Tool::Seed);
+    let canvas = h.get_by_label("Canvas").rect();
+    click_at(&mut h, canvas.center());
+    let shapes = &h.state().shapes;
+    assert_eq!(shapes.len(), 2, "{shapes:?}");
+    assert!(matches!(shapes[1], Shape::Disk { radius, .. } if radius == 5.0));
+}
+
+#[test]
+fn step_advances_exactly_one_frame_and_play_pause_toggle() {
+    let mut h = harness(TopoApp::with_sample());
+    h.step();
+    h.get_by_label("Step").click();
+    h.step();
+    assert_eq!(h.state().run.as_ref().unwrap().head(), 1);
+    assert_eq!(h.state().shown, 1);
+    h.get_by_label("Step").click();
+    h.step();
+    assert_eq!(h.state().shown, 2);
+    h.get_by_label("Play").click();
+    h.step();
+    assert!(h.state().playing);
+    for _ in 0..5 {
+        h.step();
+    }
+    let after_play = h.state().shown;
+    assert!(after_play > 2, "playing advances frames");
+    h.get_by_label("Pause").click();
+    h.step();
+    assert!(!h.state().playing);
+    let paused = h.state().shown;
+    h.step();
+    h.step();
+    assert_eq!(h.state().shown, paused, "paused stays put");
+}
+
+#[test]
+fn a_split_appears_in_the_event_log_and_clicking_it_shows_that_frame() {
+    let mut app = TopoApp::default();
+    app.send(Command::OpenImage(case_image("blobs_wrap")));
+    app.send(Command::WrapBorder(8.0));
+    app.apply();
+    let mut h = harness(app);
+    h.step();
+    for _ in 0..30 {
+        h.get_by_label("Step 10").click();
+        h.step();
+        if h.state().log.iter().any(|(_, e)| e.kind() == "split") {
+            break;
+        }
+    }
+    let (frame, event) = *h
+        .state()
+        .log
+        .iter()
+        .find(|(_, e)| e.kind() == "split")
+        .expect("a split was logged");
+    let ids: Vec<String> = event.contours().iter().map(|c| c.to_string()).collect();
+    let text = format!("frame {frame}: split [{}]", ids.join(", "));
+    h.step(); // draw the log as it is after the last step
+    h.get_by_label(&text).click();
+    h.step();
+    assert_eq!(h.state().shown, frame);
+    assert!(h
+        .state()
+        .shown_record()
+        .unwrap()
+        .events
+        .iter()
+        .any(|e| e.kind() == "split"));
+}
+
+#[test]
+fn export_writes_an_svg_that_parses_and_reset_clears() {
+    let mut h = harness(TopoApp::with_sample());
+    h.step();
+    for _ in 0..4 {
+        h.get_by_label("Step 10").click();
+        h.step();
+    }
+    let path = std::env::temp_dir().join(format!("topocontour-app-{}.svg", std::process::id()));
+    h.state_mut()
+        .send(Command::Export(ExportKind::Svg, path.clone()));
+    h.step();
+    let svg = std::fs::read_to_string(&path).expect("export wrote the file");
+    let tree =
+        resvg::usvg::Tree::from_str(&svg, &resvg::usvg::Options::default()).expect("SVG parses");
+    assert!(tree.root().children().len() >= 5, "one path per region");
+    assert!(h.state().error.is_none());
+    h.get_by_label("Reset").click();
+    h.step();
+    assert!(h.state().run.is_none());
+    assert!(h.state().log.is_empty());
+    assert_eq!(h.state().shapes.len(), 1, "reset keeps the initialisation");
+}
+
+#[test]
+fn errors_show_in_the_app_instead_of_panicking() {
+    let mut h = harness(TopoApp::with_sample());
+    h.state_mut()
+        .send(Command::OpenImage("/nonexistent/image.png".into()));
+    h.step();
+    assert!(h.state().error.as_deref().unwrap().contains("cannot read"));
+    h.state_mut().send(Command::DeleteShape(0));
+    h.step();
+    h.get_by_label("Step").click();
+    h.step();
+    assert!(h
+        .state()
+        .error
+        .as_deref()
+        .unwrap()
+        .contains("initialisation"));
+}
