@@ -160,3 +160,20 @@ fn errors_show_in_the_app_instead_of_panicking() {
         .unwrap()
         .contains("initialisation"));
 }
+
+#[test]
+fn select_and_delete_a_shape_from_the_canvas() {
+    let mut h = harness(TopoApp::with_sample());
+    h.step();
+    h.get_by_label("Select").click();
+    h.step();
+    // The wrap rectangle's left edge runs 6 image pixels inside the image's left border.
+    let on_edge = h
+        .state()
+        .screen_from_image(topocontour::Point::new(6.0, 150.0));
+    click_at(&mut h, on_edge);
+    assert_eq!(h.state().selected, Some(0));
+    h.get_by_label("Delete shape").click();
+    h.step();
+    assert!(h.state().shapes.is_empty());
+}

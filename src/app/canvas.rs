@@ -21,6 +21,8 @@ pub struct CanvasState {
     drag_to_in_image: Option<Point>,
     polygon: Vec<Point>,
     moving: Option<usize>,
+    /// The canvas rectangle on screen last frame.
+    rect: Option<Rect>,
     fill_cache: Option<(usize, usize, fill::FillMesh)>,
 }
 
@@ -54,6 +56,7 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
         cs.fitted_for = (image.width, image.height);
     }
     let (zoom, offset) = (cs.zoom, cs.offset);
+    cs.rect = Some(rect);
     let screen_from_image =
         move |p: Point| rect.min + offset + Vec2::new(p.x as f32, p.y as f32) * zoom;
     let image_from_screen = move |s: Pos2| {
@@ -156,8 +159,9 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
         }
     }
 
-    // The user's shapes (only before a run moves them away).
-    for (i, s) in app.shapes.iter().enumerate() {
+    // The user's shapes, while they are what is on screen (frame 0).
+    let shapes_visible = app.shown == 0;
+    for (i, s) in app.shapes.iter().enumerate().filter(|_| shapes_visible) {
         let sel = app.selected == Some(i);
         let stroke = Stroke::new(
             if sel { 2.5 } else { 1.5 },
@@ -270,16 +274,19 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
                         cs.polygon.push(b);
                     }
                 }
-                Tool::Select => {
-                    if let Some(i) = cs.moving.take() {
-                        if a.dist(b) > 0.0 {
-                            app.commands.push(Command::MoveShape {
-                                index: i,
-                                by: b - a,
-                            });
-                        }
-                    }
-                }
+                Tool::Select => match cs.moving.take() {
+                    Some(i) if a.dist(b) > 0.0 => app.commands.push(Command::MoveShape {
+                        index: i,
+                        by: b - a,
+                    }),
+                    Some(_) => {}
+                    // A plain click (no drag began): select what is under it.
+                    None => app.commands.push(Command::Select(hit_shape(
+                        &app.shapes,
+                        b,
+                        6.0 / zoom as f64,
+                    ))),
+                },
                 _ => {}
             }
         }
@@ -290,6 +297,15 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
             pts.push(h);
         }
         painter.add(egui::Shape::line(pts, Stroke::new(1.5, Color32::YELLOW)));
+    }
+}
+
+impl CanvasState {
+    /// Where image point `p` is on screen (as of the last frame drawn).
+    pub fn screen_from_image(&self, p: Point) -> Pos2 {
+        self.rect.map_or(Pos2::ZERO, |r| r.min)
+            + self.offset
+            + Vec2::new(p.x as f32, p.y as f32) * self.zoom
     }
 }
 

@@ -63,6 +63,7 @@ impl FillMesh {
         m
     }
 
+    #[cfg(test)]
     pub fn triangle_count(&self) -> usize {
         self.triangles.len()
     }

@@ -67,6 +67,8 @@ pub enum Command {
     Play,
     Pause,
     Step(usize),
+    /// Step until a frame with a topology event (or convergence).
+    StepToEvent,
     Reset,
     /// Show recorded frame `n` (0: the initialisation).
     SeekFrame(usize),
@@ -486,6 +488,15 @@ impl TopoApp {
             }
             Command::Pause => self.playing = false,
             Command::Step(n) => self.step_frames(n),
+            Command::StepToEvent => {
+                for _ in 0..5000 {
+                    self.step_frames(1);
+                    let done = self.run.as_ref().is_none_or(|r| r.evolver.is_converged());
+                    if done || self.shown_record().is_some_and(|r| !r.events.is_empty()) {
+                        break;
+                    }
+                }
+            }
             Command::Reset => self.reset_run(),
             Command::SeekFrame(n) => {
                 if let Some(r) = &self.run {
@@ -562,6 +573,11 @@ impl TopoApp {
         let n = (self.play_clock.floor() as usize).clamp(1, 50);
         self.play_clock = (self.play_clock - n as f64).max(0.0);
         self.step_frames(n);
+    }
+
+    /// Where image point `p` is on the canvas (as of the last frame drawn).
+    pub fn screen_from_image(&self, p: Point) -> egui::Pos2 {
+        self.canvas.screen_from_image(p)
     }
 
     /// The window title.

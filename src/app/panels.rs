@@ -41,8 +41,12 @@ pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
             if ui.button("Wrap border").clicked() {
                 app.send(Command::WrapBorder(6.0));
             }
-            if let Some(i) = app.selected {
-                if ui.button("Delete shape").clicked() {
+            let selected = app.selected;
+            if ui
+                .add_enabled(selected.is_some(), egui::Button::new("Delete shape"))
+                .clicked()
+            {
+                if let Some(i) = selected {
                     app.send(Command::DeleteShape(i));
                 }
             }
@@ -70,6 +74,13 @@ pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
             }
             if ui.button("Step 10").clicked() {
                 app.send(Command::Step(10));
+            }
+            if ui
+                .button("Next event")
+                .on_hover_text("Step until a topology event (key E)")
+                .clicked()
+            {
+                app.send(Command::StepToEvent);
             }
             if ui.button("Reset").clicked() {
                 app.send(Command::Reset);

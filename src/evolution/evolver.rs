@@ -144,6 +144,18 @@ impl Evolver {
                 }
             }
         }
+        // The initial region is the union of the shapes: a ring inside another shape's
+        // ring (a seed inside the wrap rectangle) bounds nothing new, and an outer ring
+        // nested in an outer ring would break the orientation invariant.
+        let nested: Vec<_> = set
+            .parents()
+            .into_iter()
+            .filter(|(_, parent)| parent.is_some())
+            .map(|(id, _)| id)
+            .collect();
+        for id in nested {
+            set.remove_ring(id);
+        }
         if set.contour_count() == 0 {
             return Err(EvolveError::EmptyInit);
         }
@@ -376,6 +388,30 @@ pub fn outward_normal(p: Point, x: Point, n: Point) -> Point {
         s * (1.0 / l)
     } else {
         Point::default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shapes_inside_other_shapes_join_their_region() {
+        let img = Field::new(64, 64, vec![0.5; 64 * 64]);
+        let init = [
+            Shape::Rect {
+                min: Point::new(4.0, 4.0),
+                max: Point::new(60.0, 60.0),
+            },
+            Shape::Disk {
+                center: Point::new(30.0, 30.0),
+                radius: 5.0,
+            },
+        ];
+        let ev = Evolver::new(&img, &init, Params::default()).unwrap();
+        assert_eq!(ev.contours().contour_count(), 1);
+        ev.contours().sanity_check().unwrap();
+        assert!(Evolver::new(&img, &[], Params::default()).is_err());
     }
 }
 
