@@ -26,6 +26,9 @@ pub struct CanvasState {
     fill_cache: Option<(usize, usize, fill::FillMesh)>,
 }
 
+/// Above this many vertices regions are filled only while playback is paused.
+const FILL_WHILE_PLAYING_MAX_VERTICES: usize = 5000;
+
 fn ring_color(id: u32) -> Color32 {
     // Golden-angle hues: neighbouring ids get distant colours.
     let h = (id as f32 * 0.618_034) % 1.0;
@@ -112,7 +115,10 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
     // Contours of the frame on screen.
     let cs = &mut app.canvas;
     if let Some(rec) = app.run.as_ref().and_then(|r| r.history.get(app.shown)) {
-        if app.settings.show_fill {
+        // Filling triangulates every ring; for large sets it waits until playback pauses
+        // so that playing stays fluid.
+        let small = rec.vertices <= FILL_WHILE_PLAYING_MAX_VERTICES;
+        if app.settings.show_fill && (small || !app.playing) {
             let key = (rec.index, rec.vertices);
             let stale = cs
                 .fill_cache
