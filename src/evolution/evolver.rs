@@ -127,7 +127,7 @@ impl Evolver {
         }
         let pyramid = std::sync::Arc::new(Pyramid::new(image, params.coarsest_side, 4));
         let level = pyramid.levels.len() - 1;
-        let fine = &pyramid.levels[0];
+        let fine = &pyramid.levels[0].image;
         let (object_hint, background_hint) = hints(fine, init);
         let model = IntensityModel::learn(fine, params.polarity, object_hint, background_hint);
         let spacing = Pyramid::scale(level);

@@ -110,11 +110,52 @@ impl Field {
     }
 }
 
+/// One pyramid level with its gradient fields, computed once so that a force evaluation
+/// costs a handful of bilinear samples.
+#[derive(Clone, Debug)]
+pub struct Level {
+    pub image: Field,
+    /// Central differences per pixel, x and y.
+    pub gx: Field,
+    pub gy: Field,
+    /// Gradient magnitude.
+    pub gmag: Field,
+}
+
+impl Level {
+    pub fn new(image: Field) -> Self {
+        let (w, h) = (image.width, image.height);
+        let (mut gx, mut gy, mut gm) = (vec![0f32; w * h], vec![0f32; w * h], vec![0f32; w * h]);
+        for y in 0..h {
+            for x in 0..w {
+                let dx = 0.5 * (image.at((x + 1).min(w - 1), y) - image.at(x.saturating_sub(1), y));
+                let dy = 0.5 * (image.at(x, (y + 1).min(h - 1)) - image.at(x, y.saturating_sub(1)));
+                let i = y * w + x;
+                gx[i] = dx;
+                gy[i] = dy;
+                gm[i] = (dx * dx + dy * dy).sqrt();
+            }
+        }
+        Level {
+            gx: Field::new(w, h, gx),
+            gy: Field::new(w, h, gy),
+            gmag: Field::new(w, h, gm),
+            image,
+        }
+    }
+
+    /// Gradient at `p` (bilinear in the precomputed differences).
+    #[inline]
+    pub fn gradient(&self, p: Point) -> Point {
+        Point::new(self.gx.sample(p), self.gy.sample(p))
+    }
+}
+
 /// The Gaussian pyramid: level 0 is the (lightly smoothed) image, level l has 2^-l of its
 /// resolution.
 #[derive(Clone, Debug)]
 pub struct Pyramid {
-    pub levels: Vec<Field>,
+    pub levels: Vec<Level>,
 }
 
 impl Pyramid {
@@ -123,16 +164,18 @@ impl Pyramid {
     pub fn new(image: &Field, min_side: usize, max_levels: usize) -> Self {
         // Level 0 is smoothed lightly (1/4 [1 2 1]): enough against pixel noise, little
         // enough that halos next to an edge do not pull it inwards.
-        let mut levels = vec![image.blur(&[0.25, 0.5, 0.25])];
-        while levels.len() < max_levels {
-            let last = levels.last().unwrap();
+        let mut fields = vec![image.blur(&[0.25, 0.5, 0.25])];
+        while fields.len() < max_levels {
+            let last = fields.last().unwrap();
             if last.width.min(last.height) / 2 < min_side {
                 break;
             }
             let next = last.reduce();
-            levels.push(next);
+            fields.push(next);
         }
-        Pyramid { levels }
+        Pyramid {
+            levels: fields.into_iter().map(Level::new).collect(),
+        }
     }
 
     /// Scale factor from level `l` pixels to full-resolution pixels.

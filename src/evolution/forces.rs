@@ -13,7 +13,7 @@
 //!   faded by an edge-stopping factor so that it never moves the equilibrium off the edge.
 //! - Smoothing is weak: a user expects contours to follow narrow slots and thin bridges.
 
-use super::field::Field;
+use super::field::{Field, Level};
 use crate::geometry::Point;
 
 /// Which objects to segment.
@@ -155,13 +155,13 @@ pub struct NormalSpeed {
 /// Normal speed at `x` (level coordinates) with outward unit normal `n`.
 #[inline]
 pub fn normal_speed(
-    field: &Field,
+    level: &Level,
     model: &IntensityModel,
     w: &ForceWeights,
     x: Point,
     n: Point,
 ) -> NormalSpeed {
-    let i = field.sample(x);
+    let i = level.image.sample(x);
     let s = model.score(i);
     let region = s.clamp(-1.0, 1.0);
     let contrast = (model.object - model.background).abs().max(1e-6);
@@ -169,14 +169,14 @@ pub fn normal_speed(
     // outside, ramping over a quarter of the score at the window's edges so that it
     // never chatters across an edge; faded where the gradient says an edge is near.
     let window = ((s / 0.25).min((2.5 - s) / 0.25)).clamp(-1.0, 1.0);
-    let g = field.gradient(x);
+    let g = level.gradient(x);
     let gmag = g.norm() / contrast;
     let stop = 1.0 / (1.0 + 16.0 * gmag * gmag);
     let balloon = window * stop;
     // Edge attraction: climb the gradient magnitude along the normal (half a pixel each
     // way: halos and texture make wider differences chatter).
-    let ahead = field.gradient(x + n * 0.5).norm();
-    let behind = field.gradient(x - n * 0.5).norm();
+    let ahead = level.gmag.sample(x + n * 0.5);
+    let behind = level.gmag.sample(x - n * 0.5);
     let edge = (2.0 * (ahead - behind) / contrast).clamp(-1.0, 1.0);
     NormalSpeed {
         speed: w.region * region + w.balloon * balloon + w.edge * edge,
