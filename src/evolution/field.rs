@@ -204,6 +204,12 @@ mod tests {
         assert!(p
             .levels
             .iter()
-            .all(|l| l.data.iter().all(|&v| (v - 0.25).abs() < 1e-6)));
+            .all(|l| l.image.data.iter().all(|&v| (v - 0.25).abs() < 1e-6)));
+        assert!(p
+            .levels
+            .iter()
+            .all(|l| l.gmag.data.iter().all(|&v| v.abs() < 1e-6)));
+        let ramp = Level::new(Field::new(4, 1, vec![0.0, 1.0, 2.0, 3.0]));
+        assert_eq!(ramp.gradient(Point::new(2.0, 0.5)).x, 1.0);
     }
 }
