@@ -1,5 +1,5 @@
 //! Prints per-frame statistics of an evolution on a case folder: `trace_case DIR [EVERY]`.
-use topocontour::cli::{init_shapes, params_for, ModeArg, ObjectArg, SegmentArgs};
+use topocontour::cli::{init_shapes, params_for, SegmentArgs};
 use topocontour::evolution::Evolver;
 use topocontour::io::load_image;
 
@@ -7,41 +7,7 @@ fn main() {
     let a: Vec<String> = std::env::args().collect();
     let dir = std::path::PathBuf::from(&a[1]);
     let every: usize = a.get(2).map_or(50, |s| s.parse().unwrap());
-    let meta: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("case.json")).unwrap()).unwrap();
-    let init = &meta["init"];
-    let args = SegmentArgs {
-        image: dir.join("image.png"),
-        seeds: init["seeds"]
-            .as_array()
-            .map(|s| {
-                s.iter()
-                    .map(|v| {
-                        (
-                            v[0].as_f64().unwrap(),
-                            v[1].as_f64().unwrap(),
-                            v[2].as_f64().unwrap(),
-                        )
-                    })
-                    .collect()
-            })
-            .unwrap_or_default(),
-        wrap: init["border_margin"].as_f64(),
-        rect: vec![],
-        object: if init["object"] == "bright" {
-            ObjectArg::Bright
-        } else {
-            ObjectArg::Dark
-        },
-        mode: ModeArg::Adaptive,
-        json: None,
-        mask: None,
-        svg: None,
-        geojson: None,
-        csv: None,
-        max_frames: None,
-        min_area: None,
-    };
+    let args = SegmentArgs::from_case(&dir).unwrap_or_else(|f| panic!("{}", f.message));
     let image = load_image(&args.image).unwrap();
     let mut params = params_for(&args).unwrap();
     if let Ok(w) = std::env::var("W") {

@@ -252,6 +252,28 @@ fn check_writable(path: &Path) -> Result<(), Failure> {
     Ok(())
 }
 
+/// Loads the image and evolves the contours to the end; returns the evolver and the
+/// image size.
+fn evolve(a: &SegmentArgs) -> Result<(Evolver, usize, usize), Failure> {
+    let image = load_image(&a.image).map_err(|e| bad(e.to_string()))?;
+    let shapes = init_shapes(a, image.width, image.height)?;
+    let mut ev = Evolver::new(&image, &shapes, params_for(a)?).map_err(|e| bad(e.to_string()))?;
+    ev.run();
+    ev.filter_clutter();
+    Ok((ev, image.width, image.height))
+}
+
+fn outputs(ev: &Evolver, width: usize, height: usize) -> Outputs<'_> {
+    Outputs {
+        set: ev.contours(),
+        width,
+        height,
+        frames: ev.frames(),
+        converged: ev.is_converged(),
+        events: ev.events(),
+    }
+}
+
 /// Runs `segment` and writes its outputs; returns the finished evolver.
 pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
     for p in [&a.json, &a.mask, &a.svg, &a.geojson, &a.csv]
@@ -260,27 +282,53 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
     {
         check_writable(p)?;
     }
-    let image = load_image(&a.image).map_err(|e| bad(e.to_string()))?;
-    let shapes = init_shapes(a, image.width, image.height)?;
-    let params = params_for(a)?;
-    let mut ev = Evolver::new(&image, &shapes, params).map_err(|e| bad(e.to_string()))?;
-    ev.run();
-    ev.filter_clutter();
-    let out = Outputs {
-        set: ev.contours(),
-        width: image.width,
-        height: image.height,
-        frames: ev.frames(),
-        converged: ev.is_converged(),
-        events: ev.events(),
-    };
-    let files = render(a, &out);
+    let (ev, w, h) = evolve(a)?;
+    let files = render(a, &outputs(&ev, w, h));
     // Everything is rendered before the first file is written.
     for (path, bytes) in files {
         write_atomic(&path, &bytes)
             .map_err(|e| bad(format!("cannot write {}: {e}", path.display())))?;
     }
     Ok(ev)
+}
+
+impl SegmentArgs {
+    /// The arguments an evaluation case folder (image.png + case.json) asks for, with no
+    /// outputs.
+    pub fn from_case(dir: &Path) -> Result<SegmentArgs, Failure> {
+        let text = std::fs::read_to_string(dir.join("case.json"))
+            .map_err(|e| bad(format!("{}: {e}", dir.display())))?;
+        let meta: serde_json::Value =
+            serde_json::from_str(&text).map_err(|e| bad(format!("{}: {e}", dir.display())))?;
+        let init = &meta["init"];
+        let num = |v: &serde_json::Value| {
+            v.as_f64()
+                .ok_or_else(|| bad(format!("{}: bad seed in case.json", dir.display())))
+        };
+        let mut seeds = Vec::new();
+        for s in init["seeds"].as_array().into_iter().flatten() {
+            seeds.push((num(&s[0])?, num(&s[1])?, num(&s[2])?));
+        }
+        Ok(SegmentArgs {
+            image: dir.join("image.png"),
+            seeds,
+            wrap: init["border_margin"].as_f64(),
+            rect: Vec::new(),
+            object: if init["object"] == "bright" {
+                ObjectArg::Bright
+            } else {
+                ObjectArg::Dark
+            },
+            mode: ModeArg::Adaptive,
+            json: None,
+            mask: None,
+            svg: None,
+            geojson: None,
+            csv: None,
+            max_frames: None,
+            min_area: None,
+        })
+    }
 }
 
 /// Times `segment` (in memory, without writing) on case folders.
@@ -306,62 +354,13 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
         "case", "min ms", "median", "max ms", "frames", "contours"
     );
     for d in dirs {
-        let meta: serde_json::Value = serde_json::from_str(
-            &std::fs::read_to_string(d.join("case.json")).map_err(|e| bad(e.to_string()))?,
-        )
-        .map_err(|e| bad(e.to_string()))?;
-        let init = &meta["init"];
-        let mut args = SegmentArgs {
-            image: d.join("image.png"),
-            seeds: init["seeds"]
-                .as_array()
-                .map(|s| {
-                    s.iter()
-                        .map(|v| {
-                            (
-                                v[0].as_f64().unwrap_or(0.0),
-                                v[1].as_f64().unwrap_or(0.0),
-                                v[2].as_f64().unwrap_or(1.0),
-                            )
-                        })
-                        .collect()
-                })
-                .unwrap_or_default(),
-            wrap: init["border_margin"].as_f64(),
-            rect: Vec::new(),
-            object: if init["object"] == "bright" {
-                ObjectArg::Bright
-            } else {
-                ObjectArg::Dark
-            },
-            mode: ModeArg::Adaptive,
-            json: None,
-            mask: None,
-            svg: None,
-            geojson: None,
-            csv: None,
-            max_frames: None,
-            min_area: None,
-        };
+        let args = SegmentArgs::from_case(&d)?;
         let mut times = Vec::new();
         let (mut frames, mut contours) = (0, 0);
         for _ in 0..b.runs.max(1) {
             let t = std::time::Instant::now();
-            let image = load_image(&args.image).map_err(|e| bad(e.to_string()))?;
-            let shapes = init_shapes(&args, image.width, image.height)?;
-            let mut ev = Evolver::new(&image, &shapes, params_for(&args)?)
-                .map_err(|e| bad(e.to_string()))?;
-            ev.run();
-            ev.filter_clutter();
-            let out = Outputs {
-                set: ev.contours(),
-                width: image.width,
-                height: image.height,
-                frames: ev.frames(),
-                converged: ev.is_converged(),
-                events: ev.events(),
-            };
-            args.json = None;
+            let (ev, w, h) = evolve(&args)?;
+            let out = outputs(&ev, w, h);
             std::hint::black_box((out.json(), out.mask_png()));
             times.push(t.elapsed().as_secs_f64() * 1e3);
             frames = ev.frames();
