@@ -5,6 +5,7 @@ use crate::evolution::{Evolver, Params, Polarity, Shape};
 use crate::geometry::Point;
 use crate::io::{load_image, write_atomic, Outputs};
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Polygonal active contours that change topology correctly.
@@ -349,10 +350,17 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
             return Err(bad(format!("{} is not a case folder", c.display())));
         }
     }
-    println!(
+    let mut stdout = std::io::stdout().lock();
+    // A closed pipe (`| head`) ends the output quietly instead of panicking.
+    if writeln!(
+        stdout,
         "{:<18} {:>8} {:>8} {:>8} {:>7} {:>9}",
         "case", "min ms", "median", "max ms", "frames", "contours"
-    );
+    )
+    .is_err()
+    {
+        return Ok(());
+    }
     for d in dirs {
         let args = SegmentArgs::from_case(&d)?;
         let mut times = Vec::new();
@@ -371,7 +379,8 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default();
-        println!(
+        if writeln!(
+            stdout,
             "{:<18} {:>8.1} {:>8.1} {:>8.1} {:>7} {:>9}",
             name,
             times[0],
@@ -379,7 +388,11 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
             times[times.len() - 1],
             frames,
             contours
-        );
+        )
+        .is_err()
+        {
+            return Ok(());
+        }
     }
     Ok(())
 }
