@@ -88,6 +88,27 @@ fn sign(v: f64) -> i8 {
     }
 }
 
+/// Smaller of two coordinates (a plain comparison: coordinates are never NaN here, and
+/// `f64::min`'s NaN handling costs on the hottest path).
+#[inline]
+pub fn fmin(a: f64, b: f64) -> f64 {
+    if a < b {
+        a
+    } else {
+        b
+    }
+}
+
+/// Larger of two coordinates (see [`fmin`]).
+#[inline]
+pub fn fmax(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
 /// Axis-aligned box.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
@@ -149,10 +170,10 @@ pub enum SegmentIntersection {
 /// Classifies the intersection of segments a0–a1 and b0–b1 with exact predicates.
 pub fn segment_intersection(a0: Point, a1: Point, b0: Point, b1: Point) -> SegmentIntersection {
     // Cheap rejection first: this runs for every candidate edge of every move.
-    if a0.x.max(a1.x) < b0.x.min(b1.x)
-        || b0.x.max(b1.x) < a0.x.min(a1.x)
-        || a0.y.max(a1.y) < b0.y.min(b1.y)
-        || b0.y.max(b1.y) < a0.y.min(a1.y)
+    if fmax(a0.x, a1.x) < fmin(b0.x, b1.x)
+        || fmax(b0.x, b1.x) < fmin(a0.x, a1.x)
+        || fmax(a0.y, a1.y) < fmin(b0.y, b1.y)
+        || fmax(b0.y, b1.y) < fmin(a0.y, a1.y)
     {
         return SegmentIntersection::None;
     }

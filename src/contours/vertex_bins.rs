@@ -62,6 +62,8 @@ pub struct VertexBins {
     link_next: Vec<u32>,
     link_prev: Vec<u32>,
     cell_of: Vec<u32>,
+    /// Column and row of each vertex's cell, so coverage tests need no float work.
+    cell_xy: Vec<[u32; 2]>,
     count: usize,
 }
 
@@ -85,6 +87,7 @@ impl VertexBins {
             link_next: Vec::new(),
             link_prev: Vec::new(),
             cell_of: Vec::new(),
+            cell_xy: Vec::new(),
             count: 0,
         }
     }
@@ -120,6 +123,7 @@ impl VertexBins {
     }
 
     fn link(&mut self, v: u32, c: u32) {
+        self.cell_xy[v as usize] = [c % self.nx as u32, c / self.nx as u32];
         let h = self.head[c as usize];
         self.link_next[v as usize] = h;
         self.link_prev[v as usize] = NIL;
@@ -152,6 +156,7 @@ impl BroadPhase for VertexBins {
             self.cell_of.resize(i + 1, NIL);
             self.link_next.resize(i + 1, NIL);
             self.link_prev.resize(i + 1, NIL);
+            self.cell_xy.resize(i + 1, [0, 0]);
         }
         debug_assert_eq!(self.cell_of[i], NIL, "vertex {v} inserted twice");
         let c = self.cell(p);
@@ -190,15 +195,14 @@ impl BroadPhase for VertexBins {
         }
     }
 
-    fn query_edges(&self, b: &Aabb, prev: &[u32], pos: &[Point], out: &mut Vec<u32>) {
+    fn query_edges(&self, b: &Aabb, prev: &[u32], _pos: &[Point], out: &mut Vec<u32>) {
         self.query(b, out);
-        let (x0, x1) = (self.ix(b.min.x), self.ix(b.max.x));
-        let (y0, y1) = (self.iy(b.min.y), self.iy(b.max.y));
+        let (x0, x1) = (self.ix(b.min.x) as u32, self.ix(b.max.x) as u32);
+        let (y0, y1) = (self.iy(b.min.y) as u32, self.iy(b.max.y) as u32);
         let found = out.len();
         for i in 0..found {
             let a = prev[out[i] as usize];
-            let p = pos[a as usize];
-            let (x, y) = (self.ix(p.x), self.iy(p.y));
+            let [x, y] = self.cell_xy[a as usize];
             if x < x0 || x > x1 || y < y0 || y > y1 {
                 out.push(a);
             }

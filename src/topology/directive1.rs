@@ -21,7 +21,8 @@ use super::motion_region::MotionRegion;
 use super::Degeneracy;
 use crate::contours::ContourSet;
 use crate::geometry::{
-    folds_back, point_segment_distance, segment_intersection, Aabb, Point, SegmentIntersection,
+    fmax, fmin, folds_back, point_segment_distance, segment_intersection, Aabb, Point,
+    SegmentIntersection,
 };
 
 /// One proper crossing of new edge `k` (at parameter `t`) with the edge starting at vertex
@@ -64,10 +65,10 @@ pub(crate) fn find_crossings(
         // Most candidates are nowhere near c': one box test rejects both new edges.
         let shares = b == path_ids(new_edges).0 || a == path_ids(new_edges).1;
         if !shares
-            && (pa.x.max(pb.x) < reach.min.x
-                || pa.x.min(pb.x) > reach.max.x
-                || pa.y.max(pb.y) < reach.min.y
-                || pa.y.min(pb.y) > reach.max.y)
+            && (fmax(pa.x, pb.x) < reach.min.x
+                || fmin(pa.x, pb.x) > reach.max.x
+                || fmax(pa.y, pb.y) < reach.min.y
+                || fmin(pa.y, pb.y) > reach.max.y)
         {
             continue;
         }
