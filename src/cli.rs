@@ -41,6 +41,8 @@ pub enum ObjectArg {
 pub enum ModeArg {
     /// Topology adapts: contours split, merge, make and lose holes (seed 003).
     Adaptive,
+    /// Topology is kept: fronts stop a small gap apart, holes keep a slit (seed 004).
+    Preserve,
 }
 
 #[derive(Args, Debug, Clone)]
@@ -190,6 +192,10 @@ pub fn init_shapes(a: &SegmentArgs, width: usize, height: usize) -> Result<Vec<S
 /// Params for a segment command.
 pub fn params_for(a: &SegmentArgs) -> Result<Params, Failure> {
     let mut p = Params {
+        mode: match a.mode {
+            ModeArg::Adaptive => crate::evolution::Mode::Adaptive,
+            ModeArg::Preserve => crate::evolution::Mode::Preserve,
+        },
         polarity: match a.object {
             ObjectArg::Dark => Polarity::Dark,
             ObjectArg::Bright => Polarity::Bright,

@@ -25,11 +25,26 @@ use crate::topology::{MoveError, TopologyEvent};
 /// Frames one pyramid level may take before the next finer level takes over.
 const LEVEL_FRAMES_CAP: usize = 600;
 
+/// How topology may change.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Mode {
+    /// Contours split, merge, make and lose holes (seed 003).
+    Adaptive,
+    /// Topology stays as initialised: moves that would cross are shortened to keep a gap
+    /// and nearby parts repel (seed 004).
+    Preserve,
+}
+
+/// Gap kept between contours in `Mode::Preserve`, in grid spacings of the level.
+const PRESERVE_GAP: f64 = 0.3;
+
 /// Parameters of an evolution. `Params::default()` is the one set that serves every
 /// public case.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Params {
     pub polarity: Polarity,
+    #[serde(default = "default_mode")]
+    pub mode: Mode,
     pub weights: ForceWeights,
     /// Largest step per frame, as a fraction of the level's grid spacing.
     pub step: f64,
@@ -43,10 +58,15 @@ pub struct Params {
     pub coarsest_side: usize,
 }
 
+fn default_mode() -> Mode {
+    Mode::Adaptive
+}
+
 impl Default for Params {
     fn default() -> Self {
         Params {
             polarity: Polarity::Dark,
+            mode: Mode::Adaptive,
             weights: ForceWeights::default(),
             step: 0.75,
             max_frames: 3000,
@@ -219,6 +239,9 @@ impl Evolver {
             self.still.resize(self.set.vertex_capacity(), 0);
         }
         let revisit_all = self.frame % 4 == 0;
+        let preserve = self.params.mode == Mode::Preserve;
+        let gap = PRESERVE_GAP * scale;
+        let mut near = Vec::new();
         for v in order {
             if !self.set.is_alive(v) {
                 continue;
@@ -243,12 +266,21 @@ impl Evolver {
             let lap_n = (x + self.set.position(self.set.next(n))) * 0.5 - pn;
             let bend = lap - (lap_p + lap_n) * 0.5;
             let mut d = normal * (f.speed * max_step) + lap * w.stretch + bend * w.bend;
+            if preserve {
+                d = d + repulsion(&self.set, v, 1.5 * scale, &mut near) * max_step;
+            }
             let len = d.norm();
             if len > max_step {
                 d = d * (max_step / len);
             }
             let before = events.len();
-            let moved = try_move(&mut self.set, v, x + d, &mut events);
+            let moved = if preserve {
+                self.set
+                    .move_vertex_preserving(v, x + d, gap)
+                    .unwrap_or(0.0)
+            } else {
+                try_move(&mut self.set, v, x + d, &mut events)
+            };
             if events.len() > before {
                 motions.push([pp, x, pn, x + d]);
             }
@@ -261,7 +293,13 @@ impl Evolver {
             moved_sum += moved;
         }
         let (d_min, d_max) = (scale, 2.0 * std::f64::consts::SQRT_2 * scale);
-        remesh(&mut self.set, d_min, d_max, &mut events);
+        remesh(
+            &mut self.set,
+            d_min,
+            d_max,
+            preserve.then_some(gap),
+            &mut events,
+        );
 
         self.frame += 1;
         self.level_frames += 1;
@@ -331,10 +369,12 @@ impl Evolver {
         self.still.iter_mut().for_each(|s| *s = 0);
         // Global refinement on a level change (seed 004).
         let mut events = Vec::new();
+        let gap = (self.params.mode == Mode::Preserve).then_some(PRESERVE_GAP * scale);
         remesh(
             &mut self.set,
             scale,
             2.0 * std::f64::consts::SQRT_2 * scale,
+            gap,
             &mut events,
         );
         for e in events {
@@ -349,6 +389,38 @@ impl Evolver {
     /// clutter filter of seed 003 §4.
     pub fn filter_clutter(&mut self) {
         crate::evolution::measure::drop_small(&mut self.set, self.params.min_area);
+    }
+}
+
+/// Push away from vertices of other parts within `r` (not the ring's own neighbours
+/// within four steps): seed 004's non-self-intersection force, in units of the step.
+fn repulsion(set: &ContourSet, v: u32, r: f64, near: &mut Vec<u32>) -> Point {
+    let x = set.position(v);
+    let mut own = [v; 9];
+    let (mut a, mut b) = (v, v);
+    for i in 0..4 {
+        a = set.prev(a);
+        b = set.next(b);
+        own[2 * i + 1] = a;
+        own[2 * i + 2] = b;
+    }
+    set.vertices_near(&Aabb { min: x, max: x }.expand(r), near);
+    let mut push = Point::default();
+    for &w in near.iter() {
+        if own.contains(&w) {
+            continue;
+        }
+        let d = x - set.position(w);
+        let len = d.norm();
+        if len > 0.0 && len < r {
+            push = push + d * ((r - len) / (r * len));
+        }
+    }
+    let l = push.norm();
+    if l > 1.0 {
+        push * (1.0 / l)
+    } else {
+        push
     }
 }
 

@@ -8,7 +8,7 @@ pub mod init;
 pub mod measure;
 pub mod remesh;
 
-pub use evolver::{EvolveError, Evolver, Frame, FrameEvent, Params};
+pub use evolver::{EvolveError, Evolver, Frame, FrameEvent, Mode, Params};
 pub use field::{Field, Pyramid};
 pub use forces::{ForceWeights, IntensityModel, Polarity};
 pub use init::Shape;

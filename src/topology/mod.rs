@@ -25,6 +25,7 @@ pub mod directive1;
 pub mod directive2;
 pub mod events;
 pub mod motion_region;
+pub mod preserve;
 
 use crate::contours::{ContourSet, Ring, VertexId, NIL};
 use crate::geometry::{folds_back, segment_intersection, Aabb, Point, SegmentIntersection};
