@@ -177,3 +177,39 @@ fn select_and_delete_a_shape_from_the_canvas() {
     h.step();
     assert!(h.state().shapes.is_empty());
 }
+
+#[test]
+fn the_engine_choice_keeps_two_touching_seeds_apart() {
+    let mut app = TopoApp::default();
+    app.send(Command::OpenImage(case_image("bridge_merge")));
+    app.send(Command::SetPolarity(
+        topocontour::evolution::Polarity::Bright,
+    ));
+    app.send(Command::AddShape(Shape::Disk {
+        center: topocontour::Point::new(80.0, 100.0),
+        radius: 6.0,
+    }));
+    app.send(Command::AddShape(Shape::Disk {
+        center: topocontour::Point::new(220.0, 100.0),
+        radius: 6.0,
+    }));
+    app.apply();
+    let mut h = harness(app);
+    h.step();
+    h.get_by_label("Preserve").click();
+    h.step();
+    assert_eq!(
+        h.state().settings.mode,
+        topocontour::evolution::Mode::Preserve
+    );
+    for _ in 0..40 {
+        h.get_by_label("Step 10").click();
+        h.step();
+    }
+    let rec = h.state().shown_record().unwrap();
+    assert_eq!(
+        rec.contours, 2,
+        "preserve keeps the two seeds' contours apart"
+    );
+    assert!(h.state().log.is_empty());
+}

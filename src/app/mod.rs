@@ -6,7 +6,7 @@ mod canvas;
 mod fill;
 mod panels;
 
-use crate::evolution::{Evolver, Field, ForceWeights, Params, Polarity, Shape};
+use crate::evolution::{Evolver, Field, ForceWeights, Mode, Params, Polarity, Shape};
 use crate::geometry::Point;
 use crate::io::{load_image, write_atomic, Outputs};
 use crate::topology::TopologyEvent;
@@ -75,6 +75,7 @@ pub enum Command {
     Export(ExportKind, PathBuf),
     ExportDialog(ExportKind),
     SetPolarity(Polarity),
+    SetMode(Mode),
     ResetParameters,
 }
 
@@ -83,6 +84,7 @@ pub enum Command {
 #[serde(default)]
 pub struct Settings {
     pub polarity: Polarity,
+    pub mode: Mode,
     pub weights: ForceWeights,
     pub step: f64,
     pub min_area: f64,
@@ -99,6 +101,7 @@ impl Default for Settings {
         let p = Params::default();
         Settings {
             polarity: Polarity::Dark,
+            mode: Mode::Adaptive,
             weights: p.weights,
             step: p.step,
             min_area: p.min_area,
@@ -337,6 +340,7 @@ impl TopoApp {
     pub fn params(&self) -> Params {
         Params {
             polarity: self.settings.polarity,
+            mode: self.settings.mode,
             weights: self.settings.weights,
             step: self.settings.step,
             min_area: self.settings.min_area,
@@ -525,6 +529,10 @@ impl TopoApp {
             }
             Command::SetPolarity(p) => {
                 self.settings.polarity = p;
+                self.reset_run();
+            }
+            Command::SetMode(mode) => {
+                self.settings.mode = mode;
                 self.reset_run();
             }
             Command::ResetParameters => {

@@ -60,7 +60,20 @@ pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
                     app.send(Command::SetPolarity(p));
                 }
             }
-            ui.label("Engine: adaptive");
+            let mode = app.settings.mode;
+            for (label, m) in [
+                ("Adaptive", crate::evolution::Mode::Adaptive),
+                ("Preserve", crate::evolution::Mode::Preserve),
+            ] {
+                if ui
+                    .selectable_label(mode == m, label)
+                    .on_hover_text("engine: adaptive topology, or keep the initial topology")
+                    .clicked()
+                    && mode != m
+                {
+                    app.send(Command::SetMode(m));
+                }
+            }
             ui.separator();
             if app.playing {
                 if ui.button("Pause").clicked() {
