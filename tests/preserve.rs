@@ -103,3 +103,34 @@ fn a_wrap_cannot_split_when_preserving() {
     assert_eq!(counts(&kept), (1, 0));
     assert!(kept.events().is_empty());
 }
+
+/// Random moves through `move_vertex_preserving` never change the rings' topology and
+/// keep every invariant.
+#[test]
+fn preserving_moves_never_change_topology() {
+    use topocontour::check::{draw_target, random_rings, ring_kinds, MoveMix, Rng};
+    for seed in 0..20u64 {
+        let mut rng = Rng(seed);
+        let mut set = random_rings(&mut rng, 4, 6.0);
+        let kinds = ring_kinds(&set);
+        for _ in 0..500 {
+            let v = loop {
+                let v = rng.below(set.vertex_capacity()) as u32;
+                if set.is_alive(v) {
+                    break v;
+                }
+            };
+            let to = draw_target(
+                &set,
+                v,
+                &mut rng,
+                MoveMix {
+                    lattice: seed % 2 == 0,
+                },
+            );
+            set.move_vertex_preserving(v, to, 0.1).unwrap();
+            set.sanity_check().unwrap();
+            assert_eq!(ring_kinds(&set), kinds, "seed {seed}");
+        }
+    }
+}
