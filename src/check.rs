@@ -8,6 +8,8 @@
 //! 003 — in the region iff M's winding is +1, or it is 0 and the point was in R before —
 //! and that a bitmap of the whole domain, updated by the same rule move after move,
 //! still matches (so nothing changed outside the motion region either).
+//!
+//! Set `TOPO_TRACE=1` to print the rings before and after a failing move.
 
 use crate::contours::ContourSet;
 use crate::geometry::{point_segment_distance, Aabb, Point};

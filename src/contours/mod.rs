@@ -583,7 +583,6 @@ pub(crate) fn edge_pair_fault(
     b0: Point,
     b1: Point,
 ) -> Option<&'static str> {
-    let hit = segment_intersection(a0, a1, b0, b1);
     let shared = na == vb || nb == va;
     if shared {
         if na == vb && nb == va {
@@ -596,7 +595,7 @@ pub(crate) fn edge_pair_fault(
         }
         None
     } else {
-        match hit {
+        match segment_intersection(a0, a1, b0, b1) {
             SegmentIntersection::None => None,
             SegmentIntersection::Proper { .. } => Some("cross"),
             SegmentIntersection::Touch => Some("touch"),

@@ -37,32 +37,20 @@ pub fn load_image(path: &Path) -> Result<Field, LoadError> {
         path: name.clone(),
         source,
     })?;
-    let reader = image::ImageReader::new(std::io::Cursor::new(bytes))
-        .with_guessed_format()
-        .map_err(|e| LoadError::Decode {
-            path: name.clone(),
-            reason: e.to_string(),
-        })?;
-    let (width, height) = reader.into_dimensions().map_err(|e| LoadError::Decode {
+    let decode_err = |e: &dyn std::fmt::Display| LoadError::Decode {
         path: name.clone(),
         reason: e.to_string(),
-    })?;
+    };
+    let reader = || image::ImageReader::new(std::io::Cursor::new(&bytes)).with_guessed_format();
+    // The header first: size limits before any pixel memory is allocated.
+    let (width, height) = reader()
+        .map_err(|e| decode_err(&e))?
+        .into_dimensions()
+        .map_err(|e| decode_err(&e))?;
     check_size(&name, width, height)?;
-    let bytes = std::fs::read(path).map_err(|source| LoadError::Io {
-        path: name.clone(),
-        source,
-    })?;
-    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
-        .with_guessed_format()
-        .map_err(|e| LoadError::Decode {
-            path: name.clone(),
-            reason: e.to_string(),
-        })?;
-    reader.no_limits();
-    let img = reader.decode().map_err(|e| LoadError::Decode {
-        path: name.clone(),
-        reason: e.to_string(),
-    })?;
+    let mut full = reader().map_err(|e| decode_err(&e))?;
+    full.no_limits();
+    let img = full.decode().map_err(|e| decode_err(&e))?;
     // 16-bit data keeps its precision through luma16.
     let luma = img.to_luma16();
     let data = luma.as_raw().iter().map(|&v| v as f32 / 65535.0).collect();
