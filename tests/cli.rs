@@ -360,3 +360,51 @@ fn unwritable_output_leaves_no_partial_file() {
         );
     }
 }
+
+#[test]
+fn huge_image_is_refused_before_decoding() {
+    // A PNG header claiming 100,000 × 100,000 pixels and no pixel data.
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    let mut ihdr = b"IHDR".to_vec();
+    ihdr.extend_from_slice(&100_000u32.to_be_bytes());
+    ihdr.extend_from_slice(&100_000u32.to_be_bytes());
+    ihdr.extend_from_slice(&[8, 0, 0, 0, 0]);
+    png.extend_from_slice(&13u32.to_be_bytes());
+    png.extend_from_slice(&ihdr);
+    let crc = crc32(&ihdr);
+    png.extend_from_slice(&crc.to_be_bytes());
+    // An empty IDAT and IEND so the header parses completely.
+    for kind in [&b"IDAT"[..], &b"IEND"[..]] {
+        png.extend_from_slice(&0u32.to_be_bytes());
+        png.extend_from_slice(kind);
+        png.extend_from_slice(&crc32(kind).to_be_bytes());
+    }
+    let path = tmp("huge.png");
+    std::fs::write(&path, &png).unwrap();
+    expect_bad(
+        &[
+            "segment",
+            path.to_str().unwrap(),
+            "--seed",
+            "10,10,3",
+            "--object",
+            "dark",
+        ],
+        "too large",
+    );
+}
+
+fn crc32(data: &[u8]) -> u32 {
+    let mut c = 0xFFFF_FFFFu32;
+    for &b in data {
+        c ^= b as u32;
+        for _ in 0..8 {
+            c = if c & 1 != 0 {
+                0xEDB8_8320 ^ (c >> 1)
+            } else {
+                c >> 1
+            };
+        }
+    }
+    !c
+}
