@@ -458,17 +458,6 @@ pub fn run_random_moves(
         if let Ok(ev) = &result {
             events += ev.len() as u64;
         }
-        if std::env::var("TOPO_TRACE").is_ok() && step + 1 >= moves {
-            eprintln!("before: {before:?}\nresult {result:?}");
-            for id in set.contour_ids() {
-                eprintln!(
-                    "ring {id} hole {} area {} pts {:?}",
-                    set.is_hole(id),
-                    set.signed_area(id),
-                    set.ring_points(id)
-                );
-            }
-        }
         oracle
             .check_move(&set, &before, kinds, (p, o, n, q), &result, &mut rng)
             .map_err(|e| format!("seed {seed} step {step}: move of {v} from {o:?} to {q:?} (p {p:?}, n {n:?}): {e}"))?;

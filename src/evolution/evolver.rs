@@ -200,9 +200,6 @@ impl Evolver {
     pub fn contours(&self) -> &ContourSet {
         &self.set
     }
-    pub fn contours_mut(&mut self) -> &mut ContourSet {
-        &mut self.set
-    }
     pub fn model(&self) -> IntensityModel {
         self.model
     }

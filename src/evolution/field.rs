@@ -46,14 +46,6 @@ impl Field {
         a * (1.0 - ty) + b * ty
     }
 
-    /// Gradient at `p` by central differences of bilinear samples one pixel apart.
-    #[inline]
-    pub fn gradient(&self, p: Point) -> Point {
-        let gx = self.sample(Point::new(p.x + 0.5, p.y)) - self.sample(Point::new(p.x - 0.5, p.y));
-        let gy = self.sample(Point::new(p.x, p.y + 0.5)) - self.sample(Point::new(p.x, p.y - 0.5));
-        Point::new(gx, gy)
-    }
-
     /// One pyramid step: blur with 1/16 [1 4 6 4 1] in x and y, keep every other pixel.
     pub fn reduce(&self) -> Field {
         let blurred = self.blur5();
@@ -194,7 +186,6 @@ mod tests {
         assert_eq!(f.sample(Point::new(0.5, 0.5)), 0.0);
         assert_eq!(f.sample(Point::new(1.0, 1.0)), 0.5);
         assert_eq!(f.sample(Point::new(-5.0, 1.0)), 0.0);
-        assert!((f.gradient(Point::new(2.0, 1.0)).x - 1.0).abs() < 1e-9);
         let r = f.reduce();
         assert_eq!((r.width, r.height), (2, 1));
         // A constant image stays constant through the pyramid.

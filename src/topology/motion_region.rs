@@ -93,13 +93,6 @@ impl MotionRegion {
         winding_number(&pts[..k], x)
     }
 
-    /// Signed area of the loop (M⁺ counts positive, M⁻ negative): the change of the
-    /// region's area the move makes before any topology correction.
-    pub fn signed_area(&self) -> f64 {
-        let (pts, k) = self.loop_points();
-        0.5 * crate::geometry::signed_area2(&pts[..k])
-    }
-
     /// Which side of c' the motion region lies on at parameter `t` of new edge `k`
     /// (0: p→q, 1: q→n; a removal has only edge 0): +1 left (additive), −1 right
     /// (subtractive), 0 when M is flat there.
