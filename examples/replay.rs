@@ -1,5 +1,6 @@
 //! Replays random-move checks: `replay SEED RINGS LATTICE(0|1) MOVES [COUNT]` checks COUNT
-//! consecutive seeds from SEED and prints the first failure.
+//! consecutive seeds from SEED and prints the first failure. `TOPO_BROAD=hash` uses the
+//! staggered hash.
 fn main() {
     let a: Vec<String> = std::env::args().collect();
     let seed: u64 = a[1].parse().unwrap();
@@ -7,6 +8,10 @@ fn main() {
     let lattice = a[3] == "1";
     let moves: usize = a[4].parse().unwrap();
     let count: u64 = a.get(5).map_or(1, |c| c.parse().unwrap());
+    let broad = match std::env::var("TOPO_BROAD").as_deref() {
+        Ok("hash") => topocontour::contours::BroadPhaseKind::Hash,
+        _ => topocontour::contours::BroadPhaseKind::Bins,
+    };
     let mut events = 0;
     for s in seed..seed + count {
         let r = (rings + s as usize) % 6 + 1;
@@ -16,6 +21,7 @@ fn main() {
             moves,
             topocontour::check::MoveMix {
                 lattice: lattice || s % 3 == 0,
+                broad,
             },
         ) {
             Ok(e) => events += e,

@@ -11,7 +11,7 @@
 //!
 //! Set `TOPO_TRACE=1` to print the rings before and after a failing move.
 
-use crate::contours::ContourSet;
+use crate::contours::{BroadPhaseKind, ContourSet};
 use crate::geometry::{point_segment_distance, Aabb, Point};
 use crate::topology::{MoveError, TopologyEvent};
 
@@ -332,6 +332,8 @@ pub fn star_ring(rng: &mut Rng, c: Point, r0: f64, r1: f64, k: usize, hole: bool
 pub struct MoveMix {
     /// Snap every target to the integer lattice (makes exact degeneracies frequent).
     pub lattice: bool,
+    /// The broad phase of the set under test.
+    pub broad: BroadPhaseKind,
 }
 
 /// Draws a target for vertex `v`: small, medium, toward another vertex (topology events),
@@ -369,11 +371,16 @@ pub fn draw_target(set: &ContourSet, v: u32, rng: &mut Rng, mix: MoveMix) -> Poi
 
 /// Builds a set of `k` star-shaped outer rings on a 3×3 layout, some with a hole.
 pub fn random_rings(rng: &mut Rng, k: usize, max_edge: f64) -> ContourSet {
+    random_rings_in(rng, k, max_edge, BroadPhaseKind::Bins)
+}
+
+/// [`random_rings`] with the broad phase of `kind`.
+pub fn random_rings_in(rng: &mut Rng, k: usize, max_edge: f64, kind: BroadPhaseKind) -> ContourSet {
     let domain = Aabb {
         min: Point::new(0.0, 0.0),
         max: Point::new(100.0, 100.0),
     };
-    let mut set = ContourSet::new(domain, max_edge);
+    let mut set = ContourSet::with_broad_phase(domain, max_edge, kind);
     let mut slots: Vec<usize> = (0..9).collect();
     for _ in 0..k.min(9) {
         let s = slots.swap_remove(rng.below(slots.len()));
@@ -402,6 +409,36 @@ pub fn add_star(set: &mut ContourSet, rng: &mut Rng, c: Point) -> bool {
     true
 }
 
+/// `rings` circles of 100 vertices (radius 25, edges ≈ 1.6 px, bound 2.5 px) on a square
+/// grid of pitch 60 px: the benchmark and profiling set-up.
+pub fn ring_grid(rings: usize, kind: BroadPhaseKind) -> ContourSet {
+    let side = (rings as f64).sqrt().ceil() as usize;
+    let pitch = 60.0;
+    let extent = side as f64 * pitch;
+    let mut set = ContourSet::with_broad_phase(
+        Aabb {
+            min: Point::new(0.0, 0.0),
+            max: Point::new(extent, extent),
+        },
+        2.5,
+        kind,
+    );
+    for i in 0..rings {
+        let c = Point::new(
+            (i % side) as f64 * pitch + 30.0,
+            (i / side) as f64 * pitch + 30.0,
+        );
+        let pts: Vec<Point> = (0..100)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 100.0;
+                Point::new(c.x + 25.0 * a.cos(), c.y + 25.0 * a.sin())
+            })
+            .collect();
+        set.add_ring(&pts).expect("grid rings are disjoint");
+    }
+    set
+}
+
 /// Runs `moves` random moves on a random ring set from `seed`, checking each one.
 /// Returns the number of topology events seen.
 pub fn run_random_moves(
@@ -411,7 +448,7 @@ pub fn run_random_moves(
     mix: MoveMix,
 ) -> Result<u64, String> {
     let mut rng = Rng(seed);
-    let mut set = random_rings(&mut rng, rings.max(1), 6.0);
+    let mut set = random_rings_in(&mut rng, rings.max(1), 6.0, mix.broad);
     let domain = set.domain();
     let mut oracle = Oracle::new(&set, domain, 40);
     let mut events = 0u64;
@@ -450,7 +487,9 @@ pub fn run_random_moves(
                 if segment_meets_box(set.position(w), set.position(set.next(w)), &b)
                     && !near.contains(&w)
                 {
-                    return Err(format!("seed {seed} step {step}: bins missed edge {w}"));
+                    return Err(format!(
+                        "seed {seed} step {step}: broad phase missed edge {w}"
+                    ));
                 }
             }
             (Some(q), set.move_vertex(v, q))
@@ -474,7 +513,13 @@ pub fn run_fuzz_bytes(data: &[u8]) -> Result<(), String> {
         return Ok(());
     }
     let mut rng = Rng(data[0] as u64);
-    let mut set = random_rings(&mut rng, 1 + (data[1] % 6) as usize, 6.0);
+    // The top bit of the second byte picks the broad phase.
+    let broad = if data[1] & 0x80 != 0 {
+        BroadPhaseKind::Hash
+    } else {
+        BroadPhaseKind::Bins
+    };
+    let mut set = random_rings_in(&mut rng, 1 + ((data[1] & 0x7f) % 6) as usize, 6.0, broad);
     let domain = set.domain();
     let mut oracle = Oracle::new(&set, domain, 24);
     for step in data[2..].chunks_exact(6) {

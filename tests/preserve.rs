@@ -109,6 +109,7 @@ fn a_wrap_cannot_split_when_preserving() {
 #[test]
 fn preserving_moves_never_change_topology() {
     use topocontour::check::{draw_target, random_rings, ring_kinds, MoveMix, Rng};
+    use topocontour::contours::BroadPhaseKind;
     for seed in 0..20u64 {
         let mut rng = Rng(seed);
         let mut set = random_rings(&mut rng, 4, 6.0);
@@ -126,6 +127,7 @@ fn preserving_moves_never_change_topology() {
                 &mut rng,
                 MoveMix {
                     lattice: seed % 2 == 0,
+                    broad: BroadPhaseKind::Bins,
                 },
             );
             set.move_vertex_preserving(v, to, 0.1).unwrap();

@@ -1,7 +1,8 @@
 //! Property test of the topology core (seed 003, Theorem 3): random ring sets (several
 //! outer rings, some with holes) under random single-vertex moves — small, large, towards
 //! other rings, onto vertices and edges, on the integer lattice — and vertex removals.
-//! After every move: `sanity_check()`, the bins against brute force, the event counts
+//! After every move: `sanity_check()`, the broad phase (bins or staggered hash) against
+//! brute force, the event counts
 //! against the ring counts, and the region against (R ∪ M⁺) − M⁻ evaluated independently
 //! (see `topocontour::check`).
 //!
@@ -10,6 +11,7 @@
 
 use proptest::prelude::*;
 use topocontour::check::{run_random_moves, MoveMix};
+use topocontour::contours::BroadPhaseKind;
 
 const CASES: u32 = 100;
 const MOVES_PER_CASE: usize = 1000;
@@ -18,8 +20,9 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: CASES, failure_persistence: None, ..ProptestConfig::default() })]
 
     #[test]
-    fn random_moves_keep_rings_correct(seed in any::<u64>(), rings in 1usize..7, lattice in proptest::bool::weighted(0.3)) {
-        let r = run_random_moves(seed, rings, MOVES_PER_CASE, MoveMix { lattice });
+    fn random_moves_keep_rings_correct(seed in any::<u64>(), rings in 1usize..7, lattice in proptest::bool::weighted(0.3), hash in proptest::bool::weighted(0.3)) {
+        let broad = if hash { BroadPhaseKind::Hash } else { BroadPhaseKind::Bins };
+        let r = run_random_moves(seed, rings, MOVES_PER_CASE, MoveMix { lattice, broad });
         prop_assert!(r.is_ok(), "{}", r.unwrap_err());
     }
 }
@@ -41,6 +44,11 @@ fn ten_million_random_moves() {
             per,
             MoveMix {
                 lattice: i % 3 == 0,
+                broad: if i % 2 == 0 {
+                    BroadPhaseKind::Bins
+                } else {
+                    BroadPhaseKind::Hash
+                },
             },
         )
         .unwrap_or_else(|e| panic!("{e}"));

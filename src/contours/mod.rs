@@ -13,13 +13,17 @@
 //! - no edge is longer than [`ContourSet::reach`], which is what makes the broad-phase
 //!   search local (seed 003, §3: "constraining the maximum edge length").
 
+pub mod broad_phase;
+pub mod staggered_hash;
 pub mod vertex_bins;
 
 use crate::geometry::{
     folds_back, orient, segment_intersection, signed_area2, winding_number, Aabb, Point,
     SegmentIntersection,
 };
-pub use vertex_bins::{BroadPhase, VertexBins};
+pub use broad_phase::{Broad, BroadPhase, BroadPhaseKind};
+pub use staggered_hash::StaggeredHash;
+pub use vertex_bins::VertexBins;
 
 pub(crate) const NIL: u32 = u32::MAX;
 
@@ -74,7 +78,7 @@ pub struct ContourSet {
     pub(crate) free: Vec<u32>,
     pub(crate) rings: Vec<Option<Ring>>,
     pub(crate) live_rings: usize,
-    pub(crate) bins: VertexBins,
+    pub(crate) bins: Broad,
     pub(crate) max_edge: f64,
     /// Longest edge the bins must account for: `max_edge`, or more if an edge longer than
     /// it ever had to stay (never in practice; kept so correctness never depends on it).
@@ -95,6 +99,11 @@ impl ContourSet {
     /// If `max_edge` is not a positive finite number (a programming error: callers
     /// validate user parameters first).
     pub fn new(domain: Aabb, max_edge: f64) -> Self {
+        Self::with_broad_phase(domain, max_edge, BroadPhaseKind::Bins)
+    }
+
+    /// Like [`ContourSet::new`], with the broad phase of `kind`.
+    pub fn with_broad_phase(domain: Aabb, max_edge: f64, kind: BroadPhaseKind) -> Self {
         assert!(
             max_edge.is_finite() && max_edge > 0.0,
             "edge bound must be positive, got {max_edge}"
@@ -107,7 +116,7 @@ impl ContourSet {
             free: Vec::new(),
             rings: Vec::new(),
             live_rings: 0,
-            bins: VertexBins::new(domain, max_edge),
+            bins: Broad::new(kind, domain, max_edge),
             max_edge,
             reach: max_edge,
             domain,
@@ -121,6 +130,11 @@ impl ContourSet {
     /// The edge-length bound every edge respects.
     pub fn max_edge(&self) -> f64 {
         self.max_edge
+    }
+
+    /// Which broad phase the set uses.
+    pub fn broad_phase(&self) -> BroadPhaseKind {
+        self.bins.kind()
     }
 
     /// The domain the bins cover.
@@ -147,7 +161,7 @@ impl ContourSet {
             .map(|v| self.pos[v as usize].dist(self.pos[self.next[v as usize] as usize]))
             .fold(0.0, f64::max);
         self.reach = max_edge.max(longest);
-        self.bins = VertexBins::new(self.domain, self.reach);
+        self.bins = Broad::new(self.bins.kind(), self.domain, self.reach);
         for v in 0..self.pos.len() as u32 {
             if self.label[v as usize] != NIL {
                 self.bins.insert(v, self.pos[v as usize]);

@@ -11,45 +11,12 @@
 //! vertex inside B grown by `reach`: querying that grown box and taking each found
 //! vertex's outgoing edge yields every edge that can meet B.
 
+use super::broad_phase::BroadPhase;
 use crate::geometry::{Aabb, Point};
 
 const NIL: u32 = u32::MAX;
 /// Upper bound on the number of cells, so a tiny edge bound on a huge image stays small.
 const MAX_CELLS: usize = 1 << 22;
-
-/// A broad phase over vertex positions: which vertices may lie in a box.
-pub trait BroadPhase {
-    /// Registers vertex `v` at `p`.
-    fn insert(&mut self, v: u32, p: Point);
-    /// Forgets vertex `v`.
-    fn remove(&mut self, v: u32);
-    /// Vertex `v` moved to `p`.
-    fn update(&mut self, v: u32, p: Point);
-    /// Clears `out` and fills it with a superset of the vertices whose position lies in `b`.
-    fn query(&self, b: &Aabb, out: &mut Vec<u32>);
-    /// Whether `v` is registered at a place where a query for `p` would find it.
-    fn finds(&self, v: u32, p: Point) -> bool;
-    /// Whether a query for box `b` returns a vertex registered at `p`.
-    fn covers(&self, b: &Aabb, p: Point) -> bool;
-    /// Like [`BroadPhase::query`], and also appends to `out` the predecessor (by
-    /// `prev`) of each vertex found, unless the query returned that one itself: the start
-    /// vertices of every edge with an endpoint in the queried cells, each once.
-    fn query_edges(&self, b: &Aabb, prev: &[u32], pos: &[Point], out: &mut Vec<u32>) {
-        self.query(b, out);
-        let found = out.len();
-        for i in 0..found {
-            let a = prev[out[i] as usize];
-            if !self.covers(b, pos[a as usize]) {
-                out.push(a);
-            }
-        }
-    }
-    /// Number of registered vertices.
-    fn len(&self) -> usize;
-    fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-}
 
 /// Uniform grid of vertex lists.
 #[derive(Clone, Debug)]

@@ -209,6 +209,8 @@ impl ContourSet {
         let mut found = find_crossings(self, &mr, new_edges, &cand, [pid, v], &mut crossings);
         if found.is_ok() && !crossings.is_empty() {
             found = guard_crossings(self, new_edges, &crossings, v, &mr);
+            // Candidates come in a broad-phase-specific order; the result must not.
+            crossings.sort_unstable_by(|a, b| (a.k, a.t).partial_cmp(&(b.k, b.t)).unwrap());
         }
         if let Err(e) = found {
             self.scratch = cand;
@@ -239,6 +241,7 @@ impl ContourSet {
             self.vertices_near(&m_box, &mut cand);
         }
         self.rings_inside(&mr, &cand, involved, &mut inside);
+        inside.sort_unstable();
         let moving_inside = if crossings.is_empty() {
             self.moving_ring_inside(&mr, v, self.ring(label).len)
         } else {

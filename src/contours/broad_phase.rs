@@ -1,0 +1,132 @@
+//! The broad phase of the crossing search (seed 003, §3; seed 001, §2): which vertices
+//! may lie in a box. Two implementations sit behind one trait, chosen per contour set:
+//! dense vertex bins ([`VertexBins`], the default: a flat array over the image) and
+//! staggered spatial hashing ([`StaggeredHash`]: no domain, memory in proportion to the
+//! vertices). Both give the same answers as brute force (tests/broad_phase.rs).
+
+use super::staggered_hash::StaggeredHash;
+use super::vertex_bins::VertexBins;
+use crate::geometry::{Aabb, Point};
+
+/// A broad phase over vertex positions: which vertices may lie in a box.
+pub trait BroadPhase {
+    /// Registers vertex `v` at `p`.
+    fn insert(&mut self, v: u32, p: Point);
+    /// Forgets vertex `v`.
+    fn remove(&mut self, v: u32);
+    /// Vertex `v` moved to `p`.
+    fn update(&mut self, v: u32, p: Point);
+    /// Clears `out` and fills it with a superset of the vertices whose position lies in `b`.
+    fn query(&self, b: &Aabb, out: &mut Vec<u32>);
+    /// Whether `v` is registered at a place where a query for `p` would find it.
+    fn finds(&self, v: u32, p: Point) -> bool;
+    /// Whether a query for box `b` returns a vertex registered at `p`.
+    fn covers(&self, b: &Aabb, p: Point) -> bool;
+    /// Like [`BroadPhase::query`], and also appends to `out` the predecessor (by
+    /// `prev`) of each vertex found, unless the query returned that one itself: the start
+    /// vertices of every edge with an endpoint in the queried cells, each once.
+    fn query_edges(&self, b: &Aabb, prev: &[u32], pos: &[Point], out: &mut Vec<u32>) {
+        self.query(b, out);
+        let found = out.len();
+        for i in 0..found {
+            let a = prev[out[i] as usize];
+            if !self.covers(b, pos[a as usize]) {
+                out.push(a);
+            }
+        }
+    }
+    /// Number of registered vertices.
+    fn len(&self) -> usize;
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// Which broad phase a contour set uses.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BroadPhaseKind {
+    /// Dense vertex bins over the image (seed 003).
+    #[default]
+    Bins,
+    /// Four staggered hash grids (seed 001).
+    Hash,
+}
+
+impl BroadPhaseKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            BroadPhaseKind::Bins => "bins",
+            BroadPhaseKind::Hash => "hash",
+        }
+    }
+}
+
+/// The broad phase of a contour set: an enum rather than a trait object, so the hot path
+/// dispatches by one predictable branch.
+#[derive(Clone, Debug)]
+pub enum Broad {
+    Bins(VertexBins),
+    Hash(StaggeredHash),
+}
+
+impl Broad {
+    /// A broad phase of `kind` over `domain` for edges up to `reach`.
+    pub fn new(kind: BroadPhaseKind, domain: Aabb, reach: f64) -> Self {
+        match kind {
+            BroadPhaseKind::Bins => Broad::Bins(VertexBins::new(domain, reach)),
+            BroadPhaseKind::Hash => Broad::Hash(StaggeredHash::new(reach)),
+        }
+    }
+
+    pub fn kind(&self) -> BroadPhaseKind {
+        match self {
+            Broad::Bins(_) => BroadPhaseKind::Bins,
+            Broad::Hash(_) => BroadPhaseKind::Hash,
+        }
+    }
+}
+
+macro_rules! dispatch {
+    ($self:ident, $b:ident => $e:expr) => {
+        match $self {
+            Broad::Bins($b) => $e,
+            Broad::Hash($b) => $e,
+        }
+    };
+}
+
+impl BroadPhase for Broad {
+    #[inline]
+    fn insert(&mut self, v: u32, p: Point) {
+        dispatch!(self, b => b.insert(v, p))
+    }
+    #[inline]
+    fn remove(&mut self, v: u32) {
+        dispatch!(self, b => b.remove(v))
+    }
+    #[inline]
+    fn update(&mut self, v: u32, p: Point) {
+        dispatch!(self, b => b.update(v, p))
+    }
+    #[inline]
+    fn query(&self, bx: &Aabb, out: &mut Vec<u32>) {
+        dispatch!(self, b => b.query(bx, out))
+    }
+    #[inline]
+    fn finds(&self, v: u32, p: Point) -> bool {
+        dispatch!(self, b => b.finds(v, p))
+    }
+    #[inline]
+    fn covers(&self, bx: &Aabb, p: Point) -> bool {
+        dispatch!(self, b => b.covers(bx, p))
+    }
+    #[inline]
+    fn query_edges(&self, bx: &Aabb, prev: &[u32], pos: &[Point], out: &mut Vec<u32>) {
+        dispatch!(self, b => b.query_edges(bx, prev, pos, out))
+    }
+    #[inline]
+    fn len(&self) -> usize {
+        dispatch!(self, b => b.len())
+    }
+}

@@ -1,0 +1,381 @@
+//! Staggered spatial hashing: the second broad phase, after seed 001, §2 (Scheme 2,
+//! equations 1–2 and Theorem 3), in 2D.
+//!
+//! Four systems of square boxes of side `l` cover the plane, offset by 0 or l/2 along
+//! each axis: system (i, j) puts a point in box (⌊x/l + i/2⌋, ⌊y/l + j/2⌋) (equation 1).
+//! Theorem 3, 2D: two points closer than l/2 along each axis share a box in at least one
+//! system. Applied to a query box's two corners: **a query box whose sides are at most l/2
+//! lies inside a single box of some system**, so it reads one hash bucket. Every vertex
+//! is stored once per system; a larger box reads the system-(0, 0) boxes it overlaps.
+//!
+//! Box size rule. Theorem 4's reasoning in 2D: the crossing search of a move covers c'
+//! (two edges of at most s) grown by s/2 on each side, a box with sides up to 3s; taking
+//! l = 6s (l/2 ≥ 3s) makes every ordinary move a one-bucket query. Only long moves, whose
+//! c' outgrows 2s, read several boxes.
+//!
+//! Table size: one table per system of at least twice the vertex count (the paper's
+//! measured optimum), a power of two, doubled as vertices are added. Entries carry their
+//! box, so hash collisions are filtered exactly and answers never hold duplicates.
+
+use super::broad_phase::BroadPhase;
+use crate::geometry::{Aabb, Point};
+
+const NIL: u32 = u32::MAX;
+/// Box side in units of the edge bound (see the module doc).
+pub const BOX_PER_EDGE: f64 = 6.0;
+const MIN_TABLE: usize = 1024;
+
+/// Four staggered hash grids of vertex lists (intrusive, so updates allocate nothing).
+#[derive(Clone, Debug)]
+pub struct StaggeredHash {
+    inv_l: f64,
+    /// log2 of the per-system table size.
+    bits: u32,
+    /// `4 << bits` bucket heads: system s owns `[s << bits, (s + 1) << bits)`.
+    head: Vec<u32>,
+    /// Per node `4 v + s`: list links, its box, and its bucket (`NIL` when absent).
+    link_next: Vec<u32>,
+    link_prev: Vec<u32>,
+    cell: Vec<[i32; 2]>,
+    bucket: Vec<u32>,
+    count: usize,
+}
+
+/// What a query box reads: one box of one system, or a range of system-0 boxes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Reach {
+    One { sys: usize, cell: [i32; 2] },
+    Range { lo: [i32; 2], hi: [i32; 2] },
+}
+
+#[inline]
+fn floor_i32(f: f64) -> i32 {
+    // Saturating cast, then floor for negatives (no libm call on baseline x86_64).
+    let t = f as i32;
+    t - ((t as f64) > f) as i32
+}
+
+#[inline]
+fn hash(cell: [i32; 2], bits: u32) -> usize {
+    // Large odd multipliers (the primes p₁, p₂ of equation 2), top bits kept.
+    let h = (cell[0] as u32 as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ (cell[1] as u32 as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
+    (h >> (64 - bits)) as usize
+}
+
+impl StaggeredHash {
+    /// A hash for edges no longer than `max_edge`.
+    pub fn new(max_edge: f64) -> Self {
+        let l = (max_edge * BOX_PER_EDGE).max(1e-9);
+        let bits = MIN_TABLE.trailing_zeros();
+        StaggeredHash {
+            inv_l: 1.0 / l,
+            bits,
+            head: vec![NIL; 4 << bits],
+            link_next: Vec::new(),
+            link_prev: Vec::new(),
+            cell: Vec::new(),
+            bucket: Vec::new(),
+            count: 0,
+        }
+    }
+
+    /// Side of one box, pixels.
+    pub fn box_size(&self) -> f64 {
+        1.0 / self.inv_l
+    }
+
+    /// Buckets per system.
+    pub fn table_size(&self) -> usize {
+        1 << self.bits
+    }
+
+    #[inline]
+    fn cell_of(&self, p: Point, sys: usize) -> [i32; 2] {
+        let (ox, oy) = ((sys & 1) as f64 * 0.5, (sys >> 1) as f64 * 0.5);
+        [
+            floor_i32(p.x * self.inv_l + ox),
+            floor_i32(p.y * self.inv_l + oy),
+        ]
+    }
+
+    #[inline]
+    fn bucket_of(&self, cell: [i32; 2], sys: usize) -> u32 {
+        ((sys << self.bits) + hash(cell, self.bits)) as u32
+    }
+
+    fn link(&mut self, node: usize, cell: [i32; 2]) {
+        let b = self.bucket_of(cell, node & 3);
+        let h = self.head[b as usize];
+        self.link_next[node] = h;
+        self.link_prev[node] = NIL;
+        if h != NIL {
+            self.link_prev[h as usize] = node as u32;
+        }
+        self.head[b as usize] = node as u32;
+        self.cell[node] = cell;
+        self.bucket[node] = b;
+    }
+
+    fn unlink(&mut self, node: usize) {
+        let (n, p) = (self.link_next[node], self.link_prev[node]);
+        if p != NIL {
+            self.link_next[p as usize] = n;
+        } else {
+            self.head[self.bucket[node] as usize] = n;
+        }
+        if n != NIL {
+            self.link_prev[n as usize] = p;
+        }
+        self.bucket[node] = NIL;
+    }
+
+    /// Doubles the tables until they hold at least twice the vertex count.
+    fn grow(&mut self) {
+        while self.count * 2 > (1 << self.bits) {
+            self.bits += 1;
+        }
+        if self.head.len() == 4 << self.bits {
+            return;
+        }
+        self.head = vec![NIL; 4 << self.bits];
+        for node in 0..self.bucket.len() {
+            if self.bucket[node] != NIL {
+                let c = self.cell[node];
+                self.link(node, c);
+            }
+        }
+    }
+
+    #[inline]
+    fn reach(&self, b: &Aabb) -> Reach {
+        let (x0, x1) = (b.min.x * self.inv_l, b.max.x * self.inv_l);
+        let (y0, y1) = (b.min.y * self.inv_l, b.max.y * self.inv_l);
+        let pick = |lo: f64, hi: f64| -> Option<(usize, i32)> {
+            let k = floor_i32(lo);
+            if k == floor_i32(hi) {
+                return Some((0, k));
+            }
+            let k = floor_i32(lo + 0.5);
+            (k == floor_i32(hi + 0.5)).then_some((1, k))
+        };
+        match (pick(x0, x1), pick(y0, y1)) {
+            (Some((sx, kx)), Some((sy, ky))) => Reach::One {
+                sys: sx | (sy << 1),
+                cell: [kx, ky],
+            },
+            _ => Reach::Range {
+                lo: [floor_i32(x0), floor_i32(y0)],
+                hi: [floor_i32(x1), floor_i32(y1)],
+            },
+        }
+    }
+
+    /// Whether the node's box is one the query `r` reads.
+    #[inline]
+    fn node_in(&self, node: usize, r: &Reach) -> bool {
+        let c = self.cell[node];
+        match *r {
+            Reach::One { sys, cell } => node & 3 == sys && c == cell,
+            Reach::Range { lo, hi } => {
+                node & 3 == 0 && c[0] >= lo[0] && c[0] <= hi[0] && c[1] >= lo[1] && c[1] <= hi[1]
+            }
+        }
+    }
+
+    fn read(&self, r: &Reach, out: &mut Vec<u32>) {
+        out.clear();
+        match *r {
+            Reach::One { sys, cell } => self.read_box(sys, cell, out),
+            Reach::Range { lo, hi } => {
+                let boxes = (hi[0] as i64 - lo[0] as i64 + 1) * (hi[1] as i64 - lo[1] as i64 + 1);
+                if boxes as usize > self.count {
+                    // A huge box (a very long move): scanning every vertex is cheaper.
+                    for node in (0..self.bucket.len()).step_by(4) {
+                        if self.bucket[node] != NIL && self.node_in(node, r) {
+                            out.push((node / 4) as u32);
+                        }
+                    }
+                    return;
+                }
+                for y in lo[1]..=hi[1] {
+                    for x in lo[0]..=hi[0] {
+                        self.read_box(0, [x, y], out);
+                    }
+                }
+            }
+        }
+    }
+
+    #[inline]
+    fn read_box(&self, sys: usize, cell: [i32; 2], out: &mut Vec<u32>) {
+        let mut node = self.head[self.bucket_of(cell, sys) as usize];
+        while node != NIL {
+            let i = node as usize;
+            if i & 3 == sys && self.cell[i] == cell {
+                out.push(node >> 2);
+            }
+            node = self.link_next[i];
+        }
+    }
+}
+
+impl BroadPhase for StaggeredHash {
+    fn insert(&mut self, v: u32, p: Point) {
+        let base = 4 * v as usize;
+        if base >= self.bucket.len() {
+            self.link_next.resize(base + 4, NIL);
+            self.link_prev.resize(base + 4, NIL);
+            self.cell.resize(base + 4, [0, 0]);
+            self.bucket.resize(base + 4, NIL);
+        }
+        debug_assert_eq!(self.bucket[base], NIL, "vertex {v} inserted twice");
+        for s in 0..4 {
+            let c = self.cell_of(p, s);
+            self.link(base + s, c);
+        }
+        self.count += 1;
+        if self.count * 2 > self.table_size() {
+            self.grow();
+        }
+    }
+
+    fn remove(&mut self, v: u32) {
+        let base = 4 * v as usize;
+        debug_assert_ne!(self.bucket[base], NIL);
+        for s in 0..4 {
+            self.unlink(base + s);
+        }
+        self.count -= 1;
+    }
+
+    #[inline]
+    fn update(&mut self, v: u32, p: Point) {
+        let base = 4 * v as usize;
+        for s in 0..4 {
+            let c = self.cell_of(p, s);
+            if self.cell[base + s] != c {
+                self.unlink(base + s);
+                self.link(base + s, c);
+            }
+        }
+    }
+
+    fn query(&self, b: &Aabb, out: &mut Vec<u32>) {
+        self.read(&self.reach(b), out);
+    }
+
+    fn query_edges(&self, b: &Aabb, prev: &[u32], _pos: &[Point], out: &mut Vec<u32>) {
+        let r = self.reach(b);
+        self.read(&r, out);
+        let sys = match r {
+            Reach::One { sys, .. } => sys,
+            Reach::Range { .. } => 0,
+        };
+        let found = out.len();
+        for i in 0..found {
+            let a = prev[out[i] as usize];
+            if !self.node_in(4 * a as usize + sys, &r) {
+                out.push(a);
+            }
+        }
+    }
+
+    fn finds(&self, v: u32, p: Point) -> bool {
+        let base = 4 * v as usize;
+        if base >= self.bucket.len() {
+            return false;
+        }
+        (0..4).all(|s| {
+            let c = self.cell_of(p, s);
+            if self.bucket[base + s] == NIL || self.cell[base + s] != c {
+                return false;
+            }
+            let mut node = self.head[self.bucket_of(c, s) as usize];
+            while node != NIL {
+                if node as usize == base + s {
+                    return true;
+                }
+                node = self.link_next[node as usize];
+            }
+            false
+        })
+    }
+
+    fn covers(&self, b: &Aabb, p: Point) -> bool {
+        match self.reach(b) {
+            Reach::One { sys, cell } => self.cell_of(p, sys) == cell,
+            Reach::Range { lo, hi } => {
+                let c = self.cell_of(p, 0);
+                c[0] >= lo[0] && c[0] <= hi[0] && c[1] >= lo[1] && c[1] <= hi[1]
+            }
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.count
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn bx(x0: f64, y0: f64, x1: f64, y1: f64) -> Aabb {
+        Aabb {
+            min: Point::new(x0, y0),
+            max: Point::new(x1, y1),
+        }
+    }
+
+    #[test]
+    fn small_boxes_read_one_bucket_of_some_system() {
+        let h = StaggeredHash::new(1.0); // l = 6
+        for &(x, y) in &[(0.0, 0.0), (5.9, 2.0), (-3.1, 11.7), (2.9, 2.9)] {
+            let r = h.reach(&bx(x, y, x + 3.0, y + 3.0));
+            assert!(matches!(r, Reach::One { .. }), "{x},{y}: {r:?}");
+        }
+        assert!(matches!(
+            h.reach(&bx(0.0, 0.0, 7.0, 1.0)),
+            Reach::Range { .. }
+        ));
+    }
+
+    #[test]
+    fn finds_inserted_moved_and_negative_vertices() {
+        let mut h = StaggeredHash::new(1.0);
+        h.insert(0, Point::new(1.0, 1.0));
+        h.insert(1, Point::new(-7.5, 4.0));
+        h.insert(2, Point::new(40.0, 40.0));
+        let mut out = Vec::new();
+        h.query(&bx(0.0, 0.0, 2.0, 2.0), &mut out);
+        assert_eq!(out, vec![0]);
+        h.update(0, Point::new(-8.0, 3.0));
+        h.query(&bx(-9.0, 2.0, -7.0, 5.0), &mut out);
+        out.sort();
+        assert_eq!(out, vec![0, 1]);
+        h.query(&bx(-100.0, -100.0, 100.0, 100.0), &mut out);
+        out.sort();
+        assert_eq!(out, vec![0, 1, 2]);
+        h.remove(1);
+        assert!(!h.finds(1, Point::new(-7.5, 4.0)));
+        assert!(h.finds(0, Point::new(-8.0, 3.0)));
+        assert_eq!(h.len(), 2);
+    }
+
+    #[test]
+    fn table_grows_to_twice_the_vertex_count() {
+        let mut h = StaggeredHash::new(1.0);
+        for v in 0..5000u32 {
+            h.insert(v, Point::new((v % 70) as f64 * 0.9, (v / 70) as f64 * 0.9));
+        }
+        assert!(h.table_size() >= 10_000);
+        let mut out = Vec::new();
+        // Box [0, 6)² of system (0, 0): x and y in {0, 0.9, …, 5.4}, no collision leaks in.
+        h.query(&bx(0.0, 0.0, 0.5, 0.5), &mut out);
+        assert_eq!(out.len(), 49);
+        for v in 0..5000u32 {
+            assert!(h.finds(v, Point::new((v % 70) as f64 * 0.9, (v / 70) as f64 * 0.9)));
+        }
+    }
+}
