@@ -32,6 +32,10 @@ impl Point {
     pub fn cross(self, o: Point) -> f64 {
         self.x * o.y - self.y * o.x
     }
+    #[inline]
+    pub fn norm2(self) -> f64 {
+        self.x * self.x + self.y * self.y
+    }
     pub fn norm(self) -> f64 {
         // Not hypot: coordinates are pixels, far from overflow, and this is on hot paths.
         (self.x * self.x + self.y * self.y).sqrt()
@@ -117,25 +121,28 @@ pub struct Aabb {
 }
 
 impl Aabb {
+    #[inline]
     pub fn of(points: &[Point]) -> Aabb {
         let mut b = Aabb {
             min: points[0],
             max: points[0],
         };
         for &p in &points[1..] {
-            b.min.x = b.min.x.min(p.x);
-            b.min.y = b.min.y.min(p.y);
-            b.max.x = b.max.x.max(p.x);
-            b.max.y = b.max.y.max(p.y);
+            b.min.x = fmin(b.min.x, p.x);
+            b.min.y = fmin(b.min.y, p.y);
+            b.max.x = fmax(b.max.x, p.x);
+            b.max.y = fmax(b.max.y, p.y);
         }
         b
     }
+    #[inline]
     pub fn expand(self, r: f64) -> Aabb {
         Aabb {
             min: Point::new(self.min.x - r, self.min.y - r),
             max: Point::new(self.max.x + r, self.max.y + r),
         }
     }
+    #[inline]
     pub fn contains(&self, p: Point) -> bool {
         p.x >= self.min.x && p.x <= self.max.x && p.y >= self.min.y && p.y <= self.max.y
     }

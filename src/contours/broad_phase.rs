@@ -20,17 +20,17 @@ pub trait BroadPhase {
     fn query(&self, b: &Aabb, out: &mut Vec<u32>);
     /// Whether `v` is registered at a place where a query for `p` would find it.
     fn finds(&self, v: u32, p: Point) -> bool;
-    /// Whether a query for box `b` returns a vertex registered at `p`.
-    fn covers(&self, b: &Aabb, p: Point) -> bool;
-    /// Like [`BroadPhase::query`], and also appends to `out` the predecessor (by
-    /// `prev`) of each vertex found, unless the query returned that one itself: the start
-    /// vertices of every edge with an endpoint in the queried cells, each once.
+    /// Clears `out` and fills it with the start vertex of every edge with an endpoint in
+    /// `b`, each once: the vertices lying in `b` (tested exactly, so the broad phase's
+    /// granularity does not matter) and the predecessors of those that lie outside it.
+    #[inline]
     fn query_edges(&self, b: &Aabb, prev: &[u32], pos: &[Point], out: &mut Vec<u32>) {
         self.query(b, out);
+        out.retain(|&v| b.contains(pos[v as usize]));
         let found = out.len();
         for i in 0..found {
             let a = prev[out[i] as usize];
-            if !self.covers(b, pos[a as usize]) {
+            if !b.contains(pos[a as usize]) {
                 out.push(a);
             }
         }
@@ -116,14 +116,6 @@ impl BroadPhase for Broad {
     #[inline]
     fn finds(&self, v: u32, p: Point) -> bool {
         dispatch!(self, b => b.finds(v, p))
-    }
-    #[inline]
-    fn covers(&self, bx: &Aabb, p: Point) -> bool {
-        dispatch!(self, b => b.covers(bx, p))
-    }
-    #[inline]
-    fn query_edges(&self, bx: &Aabb, prev: &[u32], pos: &[Point], out: &mut Vec<u32>) {
-        dispatch!(self, b => b.query_edges(bx, prev, pos, out))
     }
     #[inline]
     fn len(&self) -> usize {

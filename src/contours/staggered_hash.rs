@@ -22,7 +22,7 @@ use crate::geometry::{Aabb, Point};
 
 const NIL: u32 = u32::MAX;
 /// Box side in units of the edge bound (see the module doc).
-pub const BOX_PER_EDGE: f64 = 6.0;
+pub const BOX_PER_EDGE: f64 = 4.0;
 const MIN_TABLE: usize = 1024;
 
 /// Four staggered hash grids of vertex lists (intrusive, so updates allocate nothing).
@@ -265,22 +265,6 @@ impl BroadPhase for StaggeredHash {
         self.read(&self.reach(b), out);
     }
 
-    fn query_edges(&self, b: &Aabb, prev: &[u32], _pos: &[Point], out: &mut Vec<u32>) {
-        let r = self.reach(b);
-        self.read(&r, out);
-        let sys = match r {
-            Reach::One { sys, .. } => sys,
-            Reach::Range { .. } => 0,
-        };
-        let found = out.len();
-        for i in 0..found {
-            let a = prev[out[i] as usize];
-            if !self.node_in(4 * a as usize + sys, &r) {
-                out.push(a);
-            }
-        }
-    }
-
     fn finds(&self, v: u32, p: Point) -> bool {
         let base = 4 * v as usize;
         if base >= self.bucket.len() {
@@ -300,16 +284,6 @@ impl BroadPhase for StaggeredHash {
             }
             false
         })
-    }
-
-    fn covers(&self, b: &Aabb, p: Point) -> bool {
-        match self.reach(b) {
-            Reach::One { sys, cell } => self.cell_of(p, sys) == cell,
-            Reach::Range { lo, hi } => {
-                let c = self.cell_of(p, 0);
-                c[0] >= lo[0] && c[0] <= hi[0] && c[1] >= lo[1] && c[1] <= hi[1]
-            }
-        }
     }
 
     fn len(&self) -> usize {

@@ -29,8 +29,6 @@ pub struct VertexBins {
     link_next: Vec<u32>,
     link_prev: Vec<u32>,
     cell_of: Vec<u32>,
-    /// Column and row of each vertex's cell, so coverage tests need no float work.
-    cell_xy: Vec<[u32; 2]>,
     count: usize,
 }
 
@@ -54,7 +52,6 @@ impl VertexBins {
             link_next: Vec::new(),
             link_prev: Vec::new(),
             cell_of: Vec::new(),
-            cell_xy: Vec::new(),
             count: 0,
         }
     }
@@ -90,7 +87,6 @@ impl VertexBins {
     }
 
     fn link(&mut self, v: u32, c: u32) {
-        self.cell_xy[v as usize] = [c % self.nx as u32, c / self.nx as u32];
         let h = self.head[c as usize];
         self.link_next[v as usize] = h;
         self.link_prev[v as usize] = NIL;
@@ -123,7 +119,6 @@ impl BroadPhase for VertexBins {
             self.cell_of.resize(i + 1, NIL);
             self.link_next.resize(i + 1, NIL);
             self.link_prev.resize(i + 1, NIL);
-            self.cell_xy.resize(i + 1, [0, 0]);
         }
         debug_assert_eq!(self.cell_of[i], NIL, "vertex {v} inserted twice");
         let c = self.cell(p);
@@ -162,20 +157,6 @@ impl BroadPhase for VertexBins {
         }
     }
 
-    fn query_edges(&self, b: &Aabb, prev: &[u32], _pos: &[Point], out: &mut Vec<u32>) {
-        self.query(b, out);
-        let (x0, x1) = (self.ix(b.min.x) as u32, self.ix(b.max.x) as u32);
-        let (y0, y1) = (self.iy(b.min.y) as u32, self.iy(b.max.y) as u32);
-        let found = out.len();
-        for i in 0..found {
-            let a = prev[out[i] as usize];
-            let [x, y] = self.cell_xy[a as usize];
-            if x < x0 || x > x1 || y < y0 || y > y1 {
-                out.push(a);
-            }
-        }
-    }
-
     fn finds(&self, v: u32, p: Point) -> bool {
         let c = self.cell(p);
         if self.cell_of.get(v as usize) != Some(&c) {
@@ -189,15 +170,6 @@ impl BroadPhase for VertexBins {
             u = self.link_next[u as usize];
         }
         false
-    }
-
-    #[inline]
-    fn covers(&self, b: &Aabb, p: Point) -> bool {
-        let (x, y) = (self.ix(p.x), self.iy(p.y));
-        x >= self.ix(b.min.x)
-            && x <= self.ix(b.max.x)
-            && y >= self.iy(b.min.y)
-            && y <= self.iy(b.max.y)
     }
 
     fn len(&self) -> usize {

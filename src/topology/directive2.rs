@@ -13,30 +13,37 @@
 //! that passes completely through itself disappears without any crossing (Figure 2(g)).
 
 use super::motion_region::MotionRegion;
-use crate::contours::ContourSet;
-use crate::geometry::orient;
+use crate::contours::{ContourSet, NIL};
+use crate::geometry::{orient, Aabb};
 
 impl ContourSet {
     /// Rings other than those in `exclude` that lie inside M, with M's winding there.
     pub(crate) fn rings_inside(
         &self,
         mr: &MotionRegion,
+        bounds: &Aabb,
         cand: &[u32],
         exclude: &[u32],
         out: &mut Vec<(u32, i32)>,
     ) {
         out.clear();
-        let bounds = mr.bounds();
-        let mut tested: Vec<u32> = Vec::new();
+        // Rings already decided; any vertex of a ring decides it, so one test per ring.
+        let mut tested = [NIL; 8];
+        let mut ntested = 0;
         for &a in cand {
-            let l = self.label[a as usize];
-            if exclude.contains(&l) || tested.contains(&l) {
-                continue;
-            }
-            tested.push(l);
             let x = self.pos[a as usize];
             if !bounds.contains(x) {
-                continue; // a vertex outside M: the whole ring is outside
+                continue; // a vertex outside M: its ring is outside (or another vertex says)
+            }
+            let l = self.label[a as usize];
+            if exclude.contains(&l) || tested[..ntested].contains(&l) {
+                continue;
+            }
+            if ntested < tested.len() {
+                tested[ntested] = l;
+                ntested += 1;
+            } else if out.iter().any(|&(o, _)| o == l) {
+                continue;
             }
             let w = mr.winding(x);
             if w != 0 {
@@ -50,6 +57,7 @@ impl ContourSet {
     pub(crate) fn moving_ring_inside(
         &self,
         mr: &MotionRegion,
+        bounds: &Aabb,
         v: u32,
         ring_len: u32,
     ) -> Option<i32> {
@@ -62,7 +70,7 @@ impl ContourSet {
             return ((before > 0.0) != (after > 0.0)).then_some(if before > 0.0 { -1 } else { 1 });
         }
         let x = self.pos[self.next[n as usize] as usize];
-        if !mr.bounds().contains(x) {
+        if !bounds.contains(x) {
             return None;
         }
         let w = mr.winding(x);

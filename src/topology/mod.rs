@@ -240,10 +240,10 @@ impl ContourSet {
         if !(searched.contains(m_box.min) && searched.contains(m_box.max)) {
             self.vertices_near(&m_box, &mut cand);
         }
-        self.rings_inside(&mr, &cand, involved, &mut inside);
+        self.rings_inside(&mr, &m_box, &cand, involved, &mut inside);
         inside.sort_unstable();
         let moving_inside = if crossings.is_empty() {
-            self.moving_ring_inside(&mr, v, self.ring(label).len)
+            self.moving_ring_inside(&mr, &m_box, v, self.ring(label).len)
         } else {
             None
         };
@@ -296,8 +296,14 @@ impl ContourSet {
             if let Some(w) = moving_inside {
                 self.remove_ring(crate::contours::ContourId(label));
                 events.push(deletion_event(label, old[0].outer, w, None));
+            } else if let Some(v) = moved {
+                let q = self.pos[v as usize];
+                let bound2 = self.max_edge * self.max_edge;
+                if (q - p).norm2() > bound2 || (n - q).norm2() > bound2 {
+                    self.split_long_edges(&[pid, v]);
+                }
             } else {
-                self.split_long_edges(&[pid, moved.unwrap_or(pid)]);
+                self.split_long_edges(&[pid]);
             }
         } else {
             let kept = self.splice_crossings(pid, moved, &mut crossings, label);

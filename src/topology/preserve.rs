@@ -68,7 +68,7 @@ impl ContourSet {
             }
         }
         // The moving ring itself must not end up inside the swept region.
-        self.moving_ring_inside(&mr, v, self.ring(self.label[v as usize]).len)
+        self.moving_ring_inside(&mr, &mr.bounds(), v, self.ring(self.label[v as usize]).len)
             .is_none()
     }
 
