@@ -84,6 +84,17 @@ pub struct SegmentArgs {
     /// Drop regions and holes smaller than this (square pixels).
     #[arg(long, value_name = "PX", allow_negative_numbers = true)]
     pub min_area: Option<f64>,
+    /// Broad phase of the crossing search: vertex bins or staggered hashing (same result).
+    #[arg(long, value_enum, default_value = "bins")]
+    pub broad_phase: BroadPhaseArg,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BroadPhaseArg {
+    /// Dense vertex bins over the image (seed 003).
+    Bins,
+    /// Four staggered hash grids (seed 001).
+    Hash,
 }
 
 #[derive(Args, Debug)]
@@ -93,6 +104,12 @@ pub struct BenchArgs {
     /// Runs per case.
     #[arg(long, default_value_t = 10)]
     pub runs: usize,
+    /// Broad phase of the crossing search.
+    #[arg(long, value_enum, default_value = "bins")]
+    pub broad_phase: BroadPhaseArg,
+    /// Engine to time.
+    #[arg(long, value_enum, default_value = "adaptive")]
+    pub mode: ModeArg,
 }
 
 fn parse_numbers<const N: usize>(s: &str) -> Result<[f64; N], String> {
@@ -199,6 +216,10 @@ pub fn params_for(a: &SegmentArgs) -> Result<Params, Failure> {
         polarity: match a.object {
             ObjectArg::Dark => Polarity::Dark,
             ObjectArg::Bright => Polarity::Bright,
+        },
+        broad_phase: match a.broad_phase {
+            BroadPhaseArg::Bins => crate::contours::BroadPhaseKind::Bins,
+            BroadPhaseArg::Hash => crate::contours::BroadPhaseKind::Hash,
         },
         ..Params::default()
     };
@@ -334,6 +355,7 @@ impl SegmentArgs {
             csv: None,
             max_frames: None,
             min_area: None,
+            broad_phase: BroadPhaseArg::Bins,
         })
     }
 }
@@ -368,7 +390,9 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
         return Ok(());
     }
     for d in dirs {
-        let args = SegmentArgs::from_case(&d)?;
+        let mut args = SegmentArgs::from_case(&d)?;
+        args.broad_phase = b.broad_phase;
+        args.mode = b.mode;
         let mut times = Vec::new();
         let (mut frames, mut contours) = (0, 0);
         for _ in 0..b.runs.max(1) {

@@ -6,6 +6,7 @@ mod canvas;
 mod fill;
 mod panels;
 
+use crate::contours::BroadPhaseKind;
 use crate::evolution::{Evolver, Field, ForceWeights, Mode, Params, Polarity, Shape};
 use crate::geometry::Point;
 use crate::io::{load_image, write_atomic, Outputs};
@@ -76,6 +77,7 @@ pub enum Command {
     ExportDialog(ExportKind),
     SetPolarity(Polarity),
     SetMode(Mode),
+    SetBroadPhase(BroadPhaseKind),
     ResetParameters,
 }
 
@@ -85,6 +87,7 @@ pub enum Command {
 pub struct Settings {
     pub polarity: Polarity,
     pub mode: Mode,
+    pub broad_phase: BroadPhaseKind,
     pub weights: ForceWeights,
     pub step: f64,
     pub min_area: f64,
@@ -102,6 +105,7 @@ impl Default for Settings {
         Settings {
             polarity: Polarity::Dark,
             mode: Mode::Adaptive,
+            broad_phase: p.broad_phase,
             weights: p.weights,
             step: p.step,
             min_area: p.min_area,
@@ -341,6 +345,7 @@ impl TopoApp {
         Params {
             polarity: self.settings.polarity,
             mode: self.settings.mode,
+            broad_phase: self.settings.broad_phase,
             weights: self.settings.weights,
             step: self.settings.step,
             min_area: self.settings.min_area,
@@ -533,6 +538,10 @@ impl TopoApp {
             }
             Command::SetMode(mode) => {
                 self.settings.mode = mode;
+                self.reset_run();
+            }
+            Command::SetBroadPhase(kind) => {
+                self.settings.broad_phase = kind;
                 self.reset_run();
             }
             Command::ResetParameters => {

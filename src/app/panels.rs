@@ -2,6 +2,7 @@
 //! only send [`Command`]s or edit settings.
 
 use super::{Command, ExportKind, Tool, TopoApp};
+use crate::contours::BroadPhaseKind;
 use crate::evolution::Polarity;
 use egui_plot::{Legend, Line, Plot, PlotPoints};
 
@@ -74,6 +75,20 @@ pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
                     app.send(Command::SetMode(m));
                 }
             }
+            let broad = app.settings.broad_phase;
+            egui::ComboBox::from_id_salt("broad_phase")
+                .selected_text(broad.name())
+                .show_ui(ui, |ui| {
+                    for k in [BroadPhaseKind::Bins, BroadPhaseKind::Hash] {
+                        if ui.selectable_label(broad == k, k.name()).clicked() && broad != k {
+                            app.send(Command::SetBroadPhase(k));
+                        }
+                    }
+                })
+                .response
+                .on_hover_text(
+                    "broad phase of the crossing search: same contours, different speed",
+                );
             ui.separator();
             if app.playing {
                 if ui.button("Pause").clicked() {

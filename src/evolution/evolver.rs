@@ -18,7 +18,7 @@ use super::field::{Field, Pyramid};
 use super::forces::{normal_speed, ForceWeights, IntensityModel, Polarity};
 use super::init::Shape;
 use super::remesh::remesh;
-use crate::contours::ContourSet;
+use crate::contours::{BroadPhaseKind, ContourSet};
 use crate::geometry::{Aabb, Point};
 use crate::topology::{MoveError, TopologyEvent};
 
@@ -56,6 +56,9 @@ pub struct Params {
     pub converged_share: f64,
     /// Coarsest pyramid level's short side, pixels.
     pub coarsest_side: usize,
+    /// Broad phase of the crossing search (same results, different speed and memory).
+    #[serde(default)]
+    pub broad_phase: BroadPhaseKind,
 }
 
 fn default_mode() -> Mode {
@@ -73,6 +76,7 @@ impl Default for Params {
             min_area: 20.0,
             converged_share: 0.03,
             coarsest_side: 64,
+            broad_phase: BroadPhaseKind::Bins,
         }
     }
 }
@@ -155,7 +159,11 @@ impl Evolver {
             min: Point::new(0.0, 0.0),
             max: Point::new(image.width as f64, image.height as f64),
         };
-        let mut set = ContourSet::new(domain, spacing * 2.0 * std::f64::consts::SQRT_2);
+        let mut set = ContourSet::with_broad_phase(
+            domain,
+            spacing * 2.0 * std::f64::consts::SQRT_2,
+            params.broad_phase,
+        );
         for shape in init {
             // Overlapping shapes: a smaller copy still seeds the region; growth joins them.
             for f in [1.0, 0.5, 0.25] {
