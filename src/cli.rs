@@ -26,7 +26,7 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Segment an image headless and write the results.
-    Segment(SegmentArgs),
+    Segment(Box<SegmentArgs>),
     /// Time the whole pipeline (load, evolve, export) on case folders.
     Bench(BenchArgs),
 }
@@ -43,6 +43,9 @@ pub enum ModeArg {
     Adaptive,
     /// Topology is kept: fronts stop a small gap apart, holes keep a slit (seed 004).
     Preserve,
+    /// Topology is kept by fast marching on a cut-edge grid; contact lines are sub-pixel
+    /// (seed 000).
+    Implicit,
 }
 
 #[derive(Args, Debug, Clone)]
@@ -212,6 +215,7 @@ pub fn params_for(a: &SegmentArgs) -> Result<Params, Failure> {
         mode: match a.mode {
             ModeArg::Adaptive => crate::evolution::Mode::Adaptive,
             ModeArg::Preserve => crate::evolution::Mode::Preserve,
+            ModeArg::Implicit => crate::evolution::Mode::Implicit,
         },
         polarity: match a.object {
             ObjectArg::Dark => Polarity::Dark,
@@ -299,6 +303,8 @@ fn outputs(ev: &Evolver, width: usize, height: usize) -> Outputs<'_> {
         frames: ev.frames(),
         converged: ev.is_converged(),
         events: ev.events(),
+        mode: ev.params().mode.name(),
+        held: ev.held_contacts(),
     }
 }
 
@@ -311,7 +317,17 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
         check_writable(p)?;
     }
     let (ev, w, h) = evolve(a)?;
-    let files = render(a, &outputs(&ev, w, h));
+    let out = outputs(&ev, w, h);
+    if out.held > 0 {
+        // The user asked for fixed topology; say where it mattered.
+        eprintln!(
+            "topocontour: note: mode {} kept the initial topology ({} contours); fronts were held apart at {} places where adaptive mode would merge, split or close holes",
+            out.mode,
+            ev.contours().contour_count(),
+            out.held
+        );
+    }
+    let files = render(a, &out);
     // Everything is rendered before the first file is written.
     for (path, bytes) in files {
         write_atomic(&path, &bytes)

@@ -1,4 +1,5 @@
-//! Topology-preserving mode (seed 004) against the adaptive one on constructed images.
+//! The topology-keeping engines — preserve (seed 004) and implicit (seed 000) — against
+//! the adaptive one on constructed images.
 
 use topocontour::evolution::{Evolver, Field, Mode, Params, Polarity, Shape};
 use topocontour::Point;
@@ -72,6 +73,67 @@ fn two_seeds_in_one_object_merge_or_stop_apart() {
     assert!(kept.events().is_empty());
     let gap = min_gap(&kept);
     assert!(gap > 0.0 && gap <= 1.0, "gap {gap}");
+
+    let imp = run(&img, &seeds, Mode::Implicit);
+    assert_eq!(counts(&imp), (2, 0));
+    assert!(imp.events().is_empty());
+    let gap = min_gap(&imp);
+    assert!(gap > 0.0 && gap <= 1.0, "implicit gap {gap}");
+    // The contact line: vertices of one contour within a pixel of the other lie on the
+    // true midline x = 80 (equal seeds, symmetric object) within half a pixel.
+    let s = imp.contours();
+    let ids: Vec<_> = s.contour_ids().collect();
+    let (a, b) = (s.ring_points(ids[0]), s.ring_points(ids[1]));
+    let contact: Vec<Point> = a
+        .iter()
+        .copied()
+        .filter(|p| b.iter().any(|q| p.dist(*q) < 1.0))
+        .collect();
+    assert!(
+        contact.len() >= 20,
+        "contact line of {} vertices",
+        contact.len()
+    );
+    let worst = contact
+        .iter()
+        .map(|p| (p.x - 80.0).abs())
+        .fold(0.0, f64::max);
+    assert!(worst <= 0.5, "contact line {worst} px off the midline");
+}
+
+#[test]
+fn implicit_contact_line_follows_arrival_times() {
+    // Seeds at different distances from the middle: the fronts meet where their arrival
+    // times are equal, halfway between the seeds' edges (x = (44 + 100) / 2 = 72).
+    let img = image(160, 80, |x, y| {
+        ((x - 80.0) / 70.0).powi(2) + ((y - 40.0) / 28.0).powi(2) < 1.0
+    });
+    let seeds = [
+        Shape::Disk {
+            center: Point::new(40.0, 40.0),
+            radius: 4.0,
+        },
+        Shape::Disk {
+            center: Point::new(104.0, 40.0),
+            radius: 4.0,
+        },
+    ];
+    let imp = run(&img, &seeds, Mode::Implicit);
+    assert_eq!(counts(&imp), (2, 0));
+    let s = imp.contours();
+    let ids: Vec<_> = s.contour_ids().collect();
+    let (a, b) = (s.ring_points(ids[0]), s.ring_points(ids[1]));
+    // On the axis y = 40 the contact point is where the distances from both seed edges
+    // agree; away from it the line bends, so look near the axis only.
+    let on_axis: Vec<f64> = a
+        .iter()
+        .filter(|p| (p.y - 40.0).abs() < 1.0 && b.iter().any(|q| p.dist(*q) < 1.0))
+        .map(|p| p.x)
+        .collect();
+    assert!(!on_axis.is_empty());
+    for x in on_axis {
+        assert!((x - 72.0).abs() <= 1.0, "contact at x = {x}");
+    }
 }
 
 #[test]
@@ -86,6 +148,12 @@ fn a_seed_in_a_ring_makes_a_hole_only_when_adaptive() {
     }];
     assert_eq!(counts(&run(&img, &seed, Mode::Adaptive)), (1, 1));
     assert_eq!(counts(&run(&img, &seed, Mode::Preserve)), (1, 0));
+    let imp = run(&img, &seed, Mode::Implicit);
+    assert_eq!(counts(&imp), (1, 0));
+    assert!(
+        imp.held_contacts() > 0,
+        "the slit is where the ring would have closed"
+    );
 }
 
 #[test]
@@ -102,6 +170,20 @@ fn a_wrap_cannot_split_when_preserving() {
     let kept = run(&img, &wrap, Mode::Preserve);
     assert_eq!(counts(&kept), (1, 0));
     assert!(kept.events().is_empty());
+    assert!(
+        kept.held_contacts() > 0,
+        "preserve says where it held fronts apart"
+    );
+    let imp = run(&img, &wrap, Mode::Implicit);
+    assert_eq!(counts(&imp), (1, 0));
+    assert!(imp.held_contacts() > 0);
+    // The one contour still hugs both blobs: most of its area is theirs.
+    let blobs = 2.0 * std::f64::consts::PI * 400.0;
+    let area = imp.contours().region_area();
+    assert!(
+        area > 0.9 * blobs && area < 1.3 * blobs,
+        "area {area} vs {blobs}"
+    );
 }
 
 /// Random moves through `move_vertex_preserving` never change the rings' topology and

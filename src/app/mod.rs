@@ -571,6 +571,8 @@ impl TopoApp {
             frames: ev.frames(),
             converged: ev.is_converged(),
             events: ev.events(),
+            mode: ev.params().mode.name(),
+            held: ev.held_contacts(),
         };
         let bytes = match kind {
             ExportKind::Svg => out.svg().into_bytes(),

@@ -65,10 +65,11 @@ pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
             for (label, m) in [
                 ("Adaptive", crate::evolution::Mode::Adaptive),
                 ("Preserve", crate::evolution::Mode::Preserve),
+                ("Implicit", crate::evolution::Mode::Implicit),
             ] {
                 if ui
                     .selectable_label(mode == m, label)
-                    .on_hover_text("engine: adaptive topology, or keep the initial topology")
+                    .on_hover_text("engine: adaptive topology; or keep the initial topology (preserve: explicit with a gap; implicit: fast marching with sub-pixel contact lines)")
                     .clicked()
                     && mode != m
                 {

@@ -16,6 +16,7 @@
 
 use super::field::{Field, Pyramid};
 use super::forces::{normal_speed, ForceWeights, IntensityModel, Polarity};
+use super::implicit::Implicit;
 use super::init::Shape;
 use super::remesh::remesh;
 use crate::contours::{BroadPhaseKind, ContourSet};
@@ -33,7 +34,25 @@ pub enum Mode {
     /// Topology stays as initialised: moves that would cross are shortened to keep a gap
     /// and nearby parts repel (seed 004).
     Preserve,
+    /// Topology stays as initialised, implicitly: fast marching on a cut-edge grid
+    /// (seed 000; see [`super::implicit`]).
+    Implicit,
 }
+
+impl Mode {
+    /// The name used on the command line and in exports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Adaptive => "adaptive",
+            Mode::Preserve => "preserve",
+            Mode::Implicit => "implicit",
+        }
+    }
+}
+
+/// Edge bound of the contour set mirroring the implicit engine (marching-squares edges are
+/// at most √2 pixels).
+const IMPLICIT_MAX_EDGE: f64 = 2.0;
 
 /// Gap kept between contours in `Mode::Preserve`, in grid spacings of the level.
 const PRESERVE_GAP: f64 = 0.3;
@@ -141,6 +160,8 @@ pub struct Evolver {
     events: Vec<FrameEvent>,
     width: usize,
     height: usize,
+    /// The cut-edge fast marching state in `Mode::Implicit` (the set mirrors its contours).
+    implicit: Option<Box<Implicit>>,
 }
 
 impl Evolver {
@@ -187,7 +208,9 @@ impl Evolver {
         if set.contour_count() == 0 {
             return Err(EvolveError::EmptyInit);
         }
-        Ok(Evolver {
+        let implicit = (params.mode == Mode::Implicit)
+            .then(|| Box::new(Implicit::new(&fine.blur5(), model, init)));
+        let mut ev = Evolver {
             set,
             pyramid,
             params,
@@ -202,11 +225,87 @@ impl Evolver {
             events: Vec::new(),
             width: image.width,
             height: image.height,
-        })
+            implicit,
+        };
+        if ev.implicit.is_some() {
+            ev.level = 0;
+            ev.mirror_implicit();
+            if ev.set.contour_count() == 0 {
+                return Err(EvolveError::EmptyInit);
+            }
+        }
+        Ok(ev)
+    }
+
+    /// In the topology-keeping modes, how many places held fronts apart where the adaptive
+    /// engine would have changed topology: implicit — cut grid edges plus rejected
+    /// pixels; preserve — vertices that ended within two gaps of another part of the
+    /// boundary (not their own neighbours). 0 in adaptive mode.
+    pub fn held_contacts(&self) -> usize {
+        match self.params.mode {
+            Mode::Adaptive => 0,
+            Mode::Implicit => self.implicit.as_ref().map_or(0, |i| i.cuts + i.rejected),
+            Mode::Preserve => {
+                let r = 2.0 * PRESERVE_GAP * Pyramid::scale(self.level);
+                let mut near = Vec::new();
+                self.set
+                    .vertices()
+                    .filter(|&v| repulsion(&self.set, v, r, &mut near) != Point::default())
+                    .count()
+            }
+        }
+    }
+
+    /// Rebuilds the contour set from the implicit engine's contours.
+    fn mirror_implicit(&mut self) {
+        let Some(imp) = &self.implicit else { return };
+        let mut set = ContourSet::with_broad_phase(
+            self.set.domain(),
+            IMPLICIT_MAX_EDGE,
+            self.params.broad_phase,
+        );
+        for ring in imp.rings() {
+            // Rings from marching squares are disjoint by construction; a refusal here
+            // would be a bug, never silently different output in release.
+            let added = set.add_ring(&ring);
+            debug_assert!(added.is_ok(), "implicit ring refused: {added:?}");
+        }
+        self.set = set;
+    }
+
+    /// One frame of the implicit engine: the fronts advance by one time unit.
+    fn step_implicit(&mut self, until: f64) -> Frame {
+        debug_assert!(until.is_finite());
+        let imp = self.implicit.as_mut().expect("implicit mode");
+        let before = imp.conquered;
+        imp.advance(until);
+        let moved = imp.conquered - before;
+        self.converged = imp.is_done();
+        // A frame is one time unit: after a long advance, count the units it took.
+        self.frame = (self.frame + 1).max(imp.time().ceil() as usize);
+        self.mirror_implicit();
+        let vertices = self.set.vertex_count();
+        Frame {
+            index: self.frame,
+            level: 0,
+            events: Vec::new(),
+            area: self.set.region_area(),
+            vertices,
+            contours: self.set.contour_count(),
+            mean_speed: moved as f64 / vertices.max(1) as f64,
+            energy: 0.0,
+            active_share: moved as f64 / vertices.max(1) as f64,
+            converged: self.converged,
+            motions: Vec::new(),
+        }
     }
 
     pub fn contours(&self) -> &ContourSet {
         &self.set
+    }
+    /// The fast marching state, in `Mode::Implicit`.
+    pub fn implicit(&self) -> Option<&Implicit> {
+        self.implicit.as_deref()
     }
     pub fn model(&self) -> IntensityModel {
         self.model
@@ -230,8 +329,13 @@ impl Evolver {
         (self.width, self.height)
     }
 
-    /// Advances one frame: every vertex moves once, then the rings are remeshed.
+    /// Advances one frame: every vertex moves once, then the rings are remeshed (in
+    /// `Mode::Implicit`: the fronts march one time unit).
     pub fn step(&mut self) -> Frame {
+        if let Some(imp) = &self.implicit {
+            let until = imp.time() + 1.0;
+            return self.step_implicit(until);
+        }
         let scale = Pyramid::scale(self.level);
         let field = &self.pyramid.levels[self.level];
         let max_step = self.params.step * scale;
@@ -358,6 +462,15 @@ impl Evolver {
 
     /// Runs until converged or out of frames.
     pub fn run(&mut self) {
+        if self.implicit.is_some() {
+            // No intermediate contours are needed: march to the end, extract once.
+            if !self.converged {
+                let left = self.params.max_frames.saturating_sub(self.frame);
+                let now = self.implicit.as_ref().map_or(0.0, |i| i.time());
+                self.step_implicit(now + left as f64);
+            }
+            return;
+        }
         while !self.converged && self.frame < self.params.max_frames {
             self.step();
         }
@@ -468,29 +581,6 @@ pub fn outward_normal(p: Point, x: Point, n: Point) -> Point {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn shapes_inside_other_shapes_join_their_region() {
-        let img = Field::new(64, 64, vec![0.5; 64 * 64]);
-        let init = [
-            Shape::Rect {
-                min: Point::new(4.0, 4.0),
-                max: Point::new(60.0, 60.0),
-            },
-            Shape::Disk {
-                center: Point::new(30.0, 30.0),
-                radius: 5.0,
-            },
-        ];
-        let ev = Evolver::new(&img, &init, Params::default()).unwrap();
-        assert_eq!(ev.contours().contour_count(), 1);
-        ev.contours().sanity_check().unwrap();
-        assert!(Evolver::new(&img, &[], Params::default()).is_err());
-    }
-}
 
 fn check_params(p: &Params) -> Result<(), EvolveError> {
     let w = &p.weights;
@@ -578,4 +668,28 @@ fn median(v: &mut [f64]) -> Option<f64> {
     let m = v.len() / 2;
     v.select_nth_unstable_by(m, |a, b| a.total_cmp(b));
     Some(v[m])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shapes_inside_other_shapes_join_their_region() {
+        let img = Field::new(64, 64, vec![0.5; 64 * 64]);
+        let init = [
+            Shape::Rect {
+                min: Point::new(4.0, 4.0),
+                max: Point::new(60.0, 60.0),
+            },
+            Shape::Disk {
+                center: Point::new(30.0, 30.0),
+                radius: 5.0,
+            },
+        ];
+        let ev = Evolver::new(&img, &init, Params::default()).unwrap();
+        assert_eq!(ev.contours().contour_count(), 1);
+        ev.contours().sanity_check().unwrap();
+        assert!(Evolver::new(&img, &[], Params::default()).is_err());
+    }
 }

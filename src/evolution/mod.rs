@@ -4,6 +4,7 @@
 pub mod evolver;
 pub mod field;
 pub mod forces;
+pub mod implicit;
 pub mod init;
 pub mod measure;
 pub mod remesh;

@@ -43,6 +43,10 @@ pub struct Outputs<'a> {
     pub frames: usize,
     pub converged: bool,
     pub events: &'a [FrameEvent],
+    /// Engine name (`adaptive`, `preserve`, `implicit`).
+    pub mode: &'a str,
+    /// Places where a topology-keeping engine held fronts apart (0 when adaptive).
+    pub held: usize,
 }
 
 fn fmt(v: f64) -> String {
@@ -70,7 +74,7 @@ impl Outputs<'_> {
         let events: Vec<_> = self.events.iter().map(|e| json!({"frame": e.frame, "kind": e.event.kind(), "contours": e.event.contours()})).collect();
         let doc = json!({
             "width": self.width, "height": self.height, "frames": self.frames, "converged": self.converged,
-            "contours": contours, "events": events,
+            "contours": contours, "events": events, "mode": self.mode, "held": self.held,
         });
         serde_json::to_string(&doc).expect("JSON of plain data")
     }
