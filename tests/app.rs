@@ -213,3 +213,47 @@ fn the_engine_choice_keeps_two_touching_seeds_apart() {
     );
     assert!(h.state().log.is_empty());
 }
+
+fn now(app: &mut TopoApp, c: Command) {
+    app.send(c);
+    app.apply();
+}
+
+#[test]
+fn side_by_side_runs_a_second_engine_on_the_same_shapes() {
+    let mut app = TopoApp::default();
+    now(&mut app, Command::OpenImage(case_image("bridge_merge")));
+    now(&mut app, Command::SetTool(Tool::Seed));
+    for x in [80.0, 220.0] {
+        now(
+            &mut app,
+            Command::AddShape(Shape::Disk {
+                center: topocontour::Point::new(x, 100.0),
+                radius: 6.0,
+            }),
+        );
+    }
+    now(
+        &mut app,
+        Command::SetPolarity(topocontour::evolution::Polarity::Bright),
+    );
+    let mut h = harness(app);
+    h.step();
+    h.state_mut().send(Command::SetCompare(Some(
+        topocontour::evolution::Mode::Implicit,
+    )));
+    h.step();
+    // Run both to the end: adaptive merges the two seeds, implicit keeps them apart.
+    for _ in 0..40 {
+        h.state_mut().send(Command::Step(50));
+        h.step();
+    }
+    let s = h.state();
+    let a = s.shown_record().expect("main run");
+    let b = s.shown_record_b().expect("side-by-side run");
+    assert_eq!(a.contours, 1, "adaptive merges through the bridge");
+    assert_eq!(b.contours, 2, "implicit keeps the two seeds apart");
+    assert!(s.run_b.as_ref().unwrap().evolver.is_converged());
+    // Both halves are labelled with their engine.
+    h.get_by_label("Canvas");
+}

@@ -36,9 +36,20 @@ fn ring_color(id: u32) -> Color32 {
 }
 
 pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
-    let (response, painter) = ui.allocate_painter(ui.available_size(), Sense::click_and_drag());
+    let (response, full_painter) =
+        ui.allocate_painter(ui.available_size(), Sense::click_and_drag());
     response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Canvas, true, "Canvas"));
-    let rect = response.rect;
+    // Side by side: the main engine on the left half, the second on the right, both with
+    // the same view; shapes can be drawn in either half.
+    let split = app.run_b.is_some() || app.settings.compare.is_some();
+    let full = response.rect;
+    let (rect, right) = if split {
+        let (l, r) = full.split_left_right_at_fraction(0.5);
+        (l, Some(r.shrink2(Vec2::new(1.0, 0.0))))
+    } else {
+        (full, None)
+    };
+    let painter = full_painter.with_clip_rect(rect);
     let Some(image) = app.image.clone() else {
         painter.text(
             rect.center(),
@@ -63,7 +74,11 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
     let screen_from_image =
         move |p: Point| rect.min + offset + Vec2::new(p.x as f32, p.y as f32) * zoom;
     let image_from_screen = move |s: Pos2| {
-        let v = (s - rect.min - offset) / zoom;
+        let origin = match right {
+            Some(r) if r.contains(s) => r.min,
+            _ => rect.min,
+        };
+        let v = (s - origin - offset) / zoom;
         Point::new(v.x as f64, v.y as f64)
     };
 
@@ -112,9 +127,72 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
         );
     }
 
+    // The second engine's half: the same image and view, its contours.
+    if let (Some(r), Some(t)) = (right, &app.texture) {
+        let p2 = full_painter.with_clip_rect(r);
+        let shift = r.min - rect.min;
+        p2.image(
+            t.id(),
+            img_rect.translate(shift),
+            Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0)),
+            Color32::WHITE,
+        );
+        if let Some(rec) = app.shown_record_b() {
+            for ring in &rec.rings {
+                let mut pts: Vec<Pos2> = ring
+                    .points
+                    .iter()
+                    .map(|&p| screen_from_image(p) + shift)
+                    .collect();
+                pts.push(pts[0]);
+                p2.add(egui::Shape::line(
+                    pts,
+                    Stroke::new(if ring.hole { 1.5 } else { 2.0 }, ring_color(ring.id)),
+                ));
+            }
+        }
+        let label = |p: &egui::Painter, at: Rect, text: String| {
+            p.text(
+                at.min + Vec2::new(8.0, 6.0),
+                egui::Align2::LEFT_TOP,
+                text,
+                egui::FontId::proportional(15.0),
+                Color32::from_rgb(255, 230, 120),
+            );
+        };
+        let count = |rec: Option<&super::FrameRecord>| {
+            rec.map_or(String::new(), |r| format!(" — {} contours", r.contours))
+        };
+        label(
+            &p2,
+            r,
+            format!(
+                "{}{}",
+                app.settings.compare.map_or("", |m| m.name()),
+                count(app.shown_record_b())
+            ),
+        );
+        label(
+            &painter,
+            rect,
+            format!("{}{}", app.settings.mode.name(), count(app.shown_record())),
+        );
+        full_painter.line_segment(
+            [
+                Pos2::new(r.min.x - 1.0, r.min.y),
+                Pos2::new(r.min.x - 1.0, r.max.y),
+            ],
+            Stroke::new(2.0, Color32::DARK_GRAY),
+        );
+    }
+
     // Contours of the frame on screen.
     let cs = &mut app.canvas;
-    if let Some(rec) = app.run.as_ref().and_then(|r| r.history.get(app.shown)) {
+    let shown_a = app
+        .run
+        .as_ref()
+        .and_then(|r| r.history.get(app.shown.min(r.history.len() - 1)));
+    if let Some(rec) = shown_a {
         // Filling triangulates every ring; for large sets it waits until playback pauses
         // so that playing stays fluid.
         let small = rec.vertices <= FILL_WHILE_PLAYING_MAX_VERTICES;

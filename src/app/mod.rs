@@ -78,6 +78,8 @@ pub enum Command {
     SetPolarity(Polarity),
     SetMode(Mode),
     SetBroadPhase(BroadPhaseKind),
+    /// Run a second engine beside the first, on the same image and shapes (or stop).
+    SetCompare(Option<Mode>),
     ResetParameters,
 }
 
@@ -88,6 +90,8 @@ pub struct Settings {
     pub polarity: Polarity,
     pub mode: Mode,
     pub broad_phase: BroadPhaseKind,
+    /// The engine shown side by side with `mode`, if any.
+    pub compare: Option<Mode>,
     pub weights: ForceWeights,
     pub step: f64,
     pub min_area: f64,
@@ -106,6 +110,7 @@ impl Default for Settings {
             polarity: Polarity::Dark,
             mode: Mode::Adaptive,
             broad_phase: p.broad_phase,
+            compare: None,
             weights: p.weights,
             step: p.step,
             min_area: p.min_area,
@@ -250,6 +255,8 @@ pub struct TopoApp {
     pub selected: Option<usize>,
     pub settings: Settings,
     pub run: Option<Run>,
+    /// The second engine's run in the side-by-side view (same frames as `run`).
+    pub run_b: Option<Run>,
     /// The recorded frame on screen.
     pub shown: usize,
     pub playing: bool,
@@ -276,6 +283,7 @@ impl Default for TopoApp {
             selected: None,
             settings: Settings::default(),
             run: None,
+            run_b: None,
             shown: 0,
             playing: false,
             play_clock: 0.0,
@@ -336,6 +344,7 @@ impl TopoApp {
 
     fn reset_run(&mut self) {
         self.run = None;
+        self.run_b = None;
         self.shown = 0;
         self.playing = false;
         self.log.clear();
@@ -362,9 +371,20 @@ impl TopoApp {
             self.error = Some("open an image first".into());
             return false;
         };
+        let second = self.settings.compare.map(|mode| {
+            Evolver::new(
+                image,
+                &self.shapes,
+                Params {
+                    mode,
+                    ..self.params()
+                },
+            )
+        });
         match Evolver::new(image, &self.shapes, self.params()) {
             Ok(ev) => {
                 self.run = Some(Run::new(ev));
+                self.run_b = second.and_then(Result::ok).map(Run::new);
                 self.shown = 0;
                 self.log.clear();
                 true
@@ -384,27 +404,47 @@ impl TopoApp {
         }
         let run = self.run.as_mut().expect("ensured");
         if self.shown != run.head() {
-            run.rewind(self.shown);
+            run.rewind(self.shown.min(run.history.len() - 1));
             self.log.retain(|(f, _)| *f <= self.shown);
+        }
+        if let Some(b) = self.run_b.as_mut() {
+            b.rewind(self.shown.min(b.history.len() - 1));
         }
         let t = std::time::Instant::now();
         for _ in 0..n {
-            if run.evolver.is_converged() {
+            let b_done = self.run_b.as_ref().is_none_or(|b| b.evolver.is_converged());
+            if run.evolver.is_converged() && b_done {
                 self.playing = false;
                 break;
             }
-            let rec = run.step();
-            for &e in &rec.events {
-                self.log.push((rec.index, e));
+            if !run.evolver.is_converged() {
+                let rec = run.step();
+                for &e in &rec.events {
+                    self.log.push((rec.index, e));
+                }
+            }
+            if let Some(b) = self.run_b.as_mut().filter(|_| !b_done) {
+                b.step();
             }
         }
         self.step_ms = t.elapsed().as_secs_f64() * 1e3 / n.max(1) as f64;
-        self.shown = run.head();
+        // Both engines advance frame by frame; the screen shows the further one's frame.
+        self.shown = run.head().max(self.run_b.as_ref().map_or(0, Run::head));
     }
 
-    /// The record on screen, if a run exists.
+    /// The record on screen, if a run exists (the last one, once the run converged before
+    /// the side-by-side engine).
     pub fn shown_record(&self) -> Option<&FrameRecord> {
-        self.run.as_ref().and_then(|r| r.history.get(self.shown))
+        self.run
+            .as_ref()
+            .and_then(|r| r.history.get(self.shown.min(r.history.len() - 1)))
+    }
+
+    /// The side-by-side engine's record for the frame on screen.
+    pub fn shown_record_b(&self) -> Option<&FrameRecord> {
+        self.run_b
+            .as_ref()
+            .and_then(|r| r.history.get(self.shown.min(r.history.len() - 1)))
     }
 
     /// Queues a command for this frame's [`TopoApp::apply`].
@@ -509,7 +549,9 @@ impl TopoApp {
             Command::Reset => self.reset_run(),
             Command::SeekFrame(n) => {
                 if let Some(r) = &self.run {
-                    self.shown = n.min(r.history.len() - 1);
+                    let last = (r.history.len() - 1)
+                        .max(self.run_b.as_ref().map_or(0, |b| b.history.len() - 1));
+                    self.shown = n.min(last);
                     self.playing = false;
                 }
             }
@@ -540,6 +582,10 @@ impl TopoApp {
                 self.settings.mode = mode;
                 self.reset_run();
             }
+            Command::SetCompare(mode) => {
+                self.settings.compare = mode;
+                self.reset_run();
+            }
             Command::SetBroadPhase(kind) => {
                 self.settings.broad_phase = kind;
                 self.reset_run();
@@ -559,7 +605,7 @@ impl TopoApp {
         let Some(run) = self.run.as_mut() else {
             return Err("nothing to export yet: run the evolution first".into());
         };
-        run.rewind(self.shown);
+        run.rewind(self.shown.min(run.history.len() - 1));
         let ev = &run.evolver;
         let (w, h) = ev.size();
         let mut set = ev.contours().clone();

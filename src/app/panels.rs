@@ -76,6 +76,24 @@ pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
                     app.send(Command::SetMode(m));
                 }
             }
+            let compare = app.settings.compare;
+            let name = |m: Option<crate::evolution::Mode>| m.map_or("none", |m| m.name());
+            egui::ComboBox::from_id_salt("compare")
+                .selected_text(format!("beside: {}", name(compare)))
+                .show_ui(ui, |ui| {
+                    for m in [
+                        None,
+                        Some(crate::evolution::Mode::Adaptive),
+                        Some(crate::evolution::Mode::Preserve),
+                        Some(crate::evolution::Mode::Implicit),
+                    ] {
+                        if ui.selectable_label(compare == m, name(m)).clicked() && compare != m {
+                            app.send(Command::SetCompare(m));
+                        }
+                    }
+                })
+                .response
+                .on_hover_text("run a second engine side by side on the same image and shapes");
             let broad = app.settings.broad_phase;
             egui::ComboBox::from_id_salt("broad_phase")
                 .selected_text(broad.name())
@@ -126,7 +144,8 @@ pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
 pub fn bottom_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
     egui::Panel::bottom("status").show(ui, |ui| {
         if let Some(run) = &app.run {
-            let last = run.history.len() - 1;
+            let last = (run.history.len() - 1)
+                .max(app.run_b.as_ref().map_or(0, |b| b.history.len() - 1));
             let mut shown = app.shown.min(last);
             ui.horizontal(|ui| {
                 ui.label("Timeline");

@@ -209,7 +209,7 @@ impl Evolver {
             return Err(EvolveError::EmptyInit);
         }
         let implicit = (params.mode == Mode::Implicit)
-            .then(|| Box::new(Implicit::new(&fine.blur5(), model, init)));
+            .then(|| Box::new(Implicit::new(&fine.blur5().blur5(), model, init)));
         let mut ev = Evolver {
             set,
             pyramid,
@@ -580,7 +580,6 @@ pub fn outward_normal(p: Point, x: Point, n: Point) -> Point {
         Point::default()
     }
 }
-
 
 fn check_params(p: &Params) -> Result<(), EvolveError> {
     let w = &p.weights;
