@@ -12,26 +12,36 @@ xdotool windowsize "$win" 1280 820
 sleep 1
 shot() { import -window root "$out/$1.png"; }
 # Image pixel → screen for the 512×384 sample in a 1280×820 window, read off a first
-# shot of this layout (the image spans x 8–942, y 60–760).
-ox=8 oy=60 z=1.8242
+# shot of this layout (the image spans x 8–942, y 72–772).
+ox=8 oy=72 z=1.8242
 px() { python3 -c "print(int($ox + $1 * $z), int($oy + $2 * $z))"; }
 click_image() { read -r x y < <(px "$1" "$2"); xdotool mousemove "$x" "$y" click 1; sleep 0.4; }
-# Tool-bar buttons (window coordinates, as laid out at 1280 px wide).
-button() { xdotool mousemove "$1" 12 click 1; sleep "${2:-0.5}"; }
+# Tool-bar buttons (window coordinates x y, as laid out at 1280 px wide: two rows).
+button() { xdotool mousemove "$1" "$2" click 1; sleep "${3:-0.5}"; }
+play="28 35" next_event="218 35" reset="288 35"
+seed="176 12" select="385 12" delete="562 12" beside="1100 12"
 # 1. The sample opens with a wrap rectangle: "Next event" twice shows the first splits,
 #    with the motion regions that caused them flashed in magenta.
-button 1154
-button 1154 1
+button $next_event
+button $next_event 1
 shot split
 # 2. Play to convergence: final contours and the plots.
-button 968 8
+button $play 8
 shot final
-# 3. Reset, select the wrap rectangle and delete it, then place seeds in three cells.
-button 1227
-button 385
+# 3. Side by side: the implicit engine beside the adaptive one, same wrap, to the end.
+button $reset
+button $beside
+button 1085 108
+button $play 8
+shot side_by_side
+button $beside
+button 1085 39
+# 4. Reset, select the wrap rectangle and delete it, then place seeds in three cells.
+button $reset
+button $select
 click_image 6 150
-button 562
-button 175
+button $delete
+button $seed
 for c in "318 98" "230 190" "145 125" "455 310"; do click_image $c; done
 sleep 0.5
 shot seeds

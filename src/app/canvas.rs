@@ -16,7 +16,8 @@ pub struct CanvasState {
     offset: Vec2,
     /// Screen points per image pixel; 0 until fitted.
     zoom: f32,
-    fitted_for: (usize, usize),
+    /// Image size and side-by-side state the view was fitted for.
+    fitted_for: (usize, usize, bool),
     drag_from_in_image: Option<Point>,
     drag_to_in_image: Option<Point>,
     polygon: Vec<Point>,
@@ -61,13 +62,13 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
         return;
     };
     let cs = &mut app.canvas;
-    if cs.zoom == 0.0 || cs.fitted_for != (image.width, image.height) {
+    if cs.zoom == 0.0 || cs.fitted_for != (image.width, image.height, split) {
         let z = (rect.width() / image.width as f32)
             .min(rect.height() / image.height as f32)
             .max(0.05);
         cs.zoom = z;
         cs.offset = (rect.size() - Vec2::new(image.width as f32, image.height as f32) * z) * 0.5;
-        cs.fitted_for = (image.width, image.height);
+        cs.fitted_for = (image.width, image.height, split);
     }
     let (zoom, offset) = (cs.zoom, cs.offset);
     cs.rect = Some(rect);

@@ -94,21 +94,9 @@ pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
                 })
                 .response
                 .on_hover_text("run a second engine side by side on the same image and shapes");
-            let broad = app.settings.broad_phase;
-            egui::ComboBox::from_id_salt("broad_phase")
-                .selected_text(broad.name())
-                .show_ui(ui, |ui| {
-                    for k in [BroadPhaseKind::Bins, BroadPhaseKind::Hash] {
-                        if ui.selectable_label(broad == k, k.name()).clicked() && broad != k {
-                            app.send(Command::SetBroadPhase(k));
-                        }
-                    }
-                })
-                .response
-                .on_hover_text(
-                    "broad phase of the crossing search: same contours, different speed",
-                );
-            ui.separator();
+        });
+        // Playback on its own row, so its buttons stay put whatever the first row holds.
+        ui.horizontal_wrapped(|ui| {
             if app.playing {
                 if ui.button("Pause").clicked() {
                     app.send(Command::Pause);
@@ -211,6 +199,21 @@ pub fn side_panel(app: &mut TopoApp, ui: &mut egui::Ui) {
                     if ui.button("Reset parameters").clicked() {
                         app.commands.push(Command::ResetParameters);
                     }
+                    let broad = app.settings.broad_phase;
+                    egui::ComboBox::from_label("broad phase")
+                        .selected_text(broad.name())
+                        .show_ui(ui, |ui| {
+                            for k in [BroadPhaseKind::Bins, BroadPhaseKind::Hash] {
+                                if ui.selectable_label(broad == k, k.name()).clicked() && broad != k
+                                {
+                                    app.commands.push(Command::SetBroadPhase(k));
+                                }
+                            }
+                        })
+                        .response
+                        .on_hover_text(
+                            "crossing search: vertex bins or staggered hashing (same contours, different speed)",
+                        );
                     if changed {
                         app.commands.push(Command::Reset);
                     }

@@ -208,8 +208,8 @@ impl Evolver {
         if set.contour_count() == 0 {
             return Err(EvolveError::EmptyInit);
         }
-        let implicit = (params.mode == Mode::Implicit)
-            .then(|| Box::new(Implicit::new(&fine.blur5().blur5(), model, init)));
+        let implicit =
+            (params.mode == Mode::Implicit).then(|| Box::new(Implicit::new(fine, model, init)));
         let mut ev = Evolver {
             set,
             pyramid,

@@ -6,7 +6,8 @@
 //! R₀ (pixel centres inside the drawn shapes) gives one label per 4-connected component.
 //! Two fronts march by arrival time (one min-heap, first-order upwind eikonal update):
 //! - the *growing* front conquers pixels outside R₀ that the image calls object, with
-//!   speed = how clearly object they are (the intensity model's score, at least
+//!   speed = how clearly object they are (the intensity model's score on a smoothed
+//!   copy of the image, at least
 //!   [`MIN_SPEED`]); background pixels have speed 0 and are never reached;
 //! - the *shrinking* front conquers pixels of R₀ that the image calls background, from
 //!   the pixels outside R₀, so a wrap rectangle shrinks onto the objects.
@@ -17,8 +18,10 @@
 //! §4.3, with the paper's choices:
 //! - simple: conquered as usual;
 //! - it would close a hole or cut a label in two (connectivity number ≠ 1): rejected
-//!   for good (the paper rejects for symmetry). A ring grown from one seed keeps a
-//!   one-pixel slit; a wrap around separate blobs keeps thin bridges;
+//!   (as the paper does), until a neighbour changes owner — then it is tried again, so
+//!   tendrils left behind by an earlier rejection are eaten back to where they matter.
+//!   A ring grown from one seed keeps a one-pixel slit; a wrap around separate blobs
+//!   keeps thin bridges between them;
 //! - it touches two labels (two fronts collide): it joins the label whose neighbour
 //!   arrived first, and every grid edge to a pixel of another label is *cut*. Cut
 //!   positions come from the arrival-time slopes on both sides (§4.4), so contact lines
@@ -62,7 +65,10 @@ const S_MARGIN: f64 = 0.02;
 pub struct Implicit {
     w: usize,
     h: usize,
+    /// The image the contour positions are read from, and a smoother copy that decides
+    /// speeds (so noise does not stop or leak the fronts).
     image: Vec<f32>,
+    smooth: Vec<f32>,
     model: IntensityModel,
     in_r0: Vec<bool>,
     owner: Vec<u32>,
@@ -92,6 +98,7 @@ fn key(t: f64) -> u64 {
 
 impl Implicit {
     /// Rasterises `init` (pixel centres inside any shape) and seeds both fronts.
+    /// Speeds come from `image` smoothed twice by [`Field::blur5`].
     pub fn new(image: &Field, model: IntensityModel, init: &[Shape]) -> Self {
         let (w, h) = (image.width, image.height);
         let mut in_r0 = vec![false; w * h];
@@ -102,6 +109,7 @@ impl Implicit {
             w,
             h,
             image: image.data.clone(),
+            smooth: image.blur5().blur5().data,
             model,
             in_r0,
             owner: vec![NONE; w * h],
@@ -183,7 +191,7 @@ impl Implicit {
 
     #[inline]
     fn score(&self, i: usize) -> f64 {
-        self.model.score(self.image[i] as f64)
+        self.model.score(self.smooth[i] as f64)
     }
 
     /// Speed of the front that may conquer pixel `i` (0: never).
@@ -313,6 +321,32 @@ impl Implicit {
                 self.update(u);
             }
         }
+        self.retry_rejected(i);
+    }
+
+    /// Gives the rejected pixels around a conquest another chance: what was not simple
+    /// may be now (a two-pixel-wide tendril thinned to one pixel ends in a simple tip),
+    /// so only the bridges that hold topology stay. Each pixel changes owner at most
+    /// once, so this terminates.
+    fn retry_rejected(&mut self, i: usize) {
+        let (x, y) = ((i % self.w) as isize, (i / self.w) as isize);
+        for dy in -1..=1 {
+            for dx in -1..=1 {
+                let (nx, ny) = (x + dx, y + dy);
+                if nx < 0 || ny < 0 || nx as usize >= self.w || ny as usize >= self.h {
+                    continue;
+                }
+                let u = ny as usize * self.w + nx as usize;
+                if self.state[u] == REJECTED {
+                    self.state[u] = FAR;
+                    self.t[u] = f64::INFINITY;
+                    self.rejected -= 1;
+                    if self.eligible(u) {
+                        self.update(u);
+                    }
+                }
+            }
+        }
     }
 
     fn shrink(&mut self, i: usize) {
@@ -331,6 +365,7 @@ impl Implicit {
                 self.update(u);
             }
         }
+        self.retry_rejected(i);
     }
 
     fn reject(&mut self, i: usize) {
