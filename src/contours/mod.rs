@@ -192,9 +192,6 @@ impl ContourSet {
         if area2 == 0.0 {
             return Err(RingError::ZeroArea);
         }
-        if self.ring_would_intersect(points) {
-            return Err(RingError::Intersects);
-        }
         let id = self.rings.len() as u32;
         let first = self.alloc(points[0], id);
         let mut last = first;
@@ -206,6 +203,19 @@ impl ContourSet {
         }
         self.next[last as usize] = first;
         self.prev[first as usize] = last;
+        if self.new_ring_intersects(first) {
+            // Undo: the slots go back to the free list, the id is not used.
+            let mut w = first;
+            loop {
+                let nw = self.next[w as usize];
+                self.release(w);
+                w = nw;
+                if w == first {
+                    break;
+                }
+            }
+            return Err(RingError::Intersects);
+        }
         self.rings.push(Some(Ring {
             anchor: first,
             len: n as u32,
@@ -215,35 +225,40 @@ impl ContourSet {
         Ok(ContourId(id))
     }
 
-    fn ring_would_intersect(&self, points: &[Point]) -> bool {
-        let n = points.len();
+    /// Whether the ring just linked at `first` (already in the broad phase) crosses or
+    /// touches itself or another ring: each edge against the edges the broad phase offers
+    /// near it, so the check is O(n) rather than O(n²).
+    fn new_ring_intersects(&self, first: u32) -> bool {
         let mut cand = Vec::new();
-        for i in 0..n {
-            let (a0, a1) = (points[i], points[(i + 1) % n]);
-            // Against its own other edges: neighbours may only share their common vertex.
-            for j in i + 1..n {
-                let (b0, b1) = (points[j], points[(j + 1) % n]);
-                let bad = if j == i + 1 {
-                    a0 == a1 || folds_back(a1, a0, b1)
-                } else if i == 0 && j == n - 1 {
-                    folds_back(a0, a1, b0)
+        let mut a = first;
+        loop {
+            let b = self.next[a as usize];
+            let (a0, a1) = (self.pos[a as usize], self.pos[b as usize]);
+            if a0 == a1 {
+                return true;
+            }
+            self.edges_near(&Aabb::of(&[a0, a1]), &mut cand);
+            for &c in &cand {
+                if c == a {
+                    continue;
+                }
+                let cn = self.next[c as usize];
+                let (c0, c1) = (self.pos[c as usize], self.pos[cn as usize]);
+                // Neighbouring edges share one vertex and must not fold onto each other.
+                let bad = if c == b {
+                    folds_back(a1, a0, c1)
+                } else if cn == a {
+                    folds_back(a0, a1, c0)
                 } else {
-                    segment_intersection(a0, a1, b0, b1) != SegmentIntersection::None
+                    segment_intersection(a0, a1, c0, c1) != SegmentIntersection::None
                 };
                 if bad {
                     return true;
                 }
             }
-            let b = Aabb::of(&[a0, a1]).expand(self.reach);
-            self.bins.query(&b, &mut cand);
-            for &c in &cand {
-                let (b0, b1) = (
-                    self.pos[c as usize],
-                    self.pos[self.next[c as usize] as usize],
-                );
-                if segment_intersection(a0, a1, b0, b1) != SegmentIntersection::None {
-                    return true;
-                }
+            a = b;
+            if a == first {
+                break;
             }
         }
         // A ring with no crossing may still enclose or sit inside another one: that is
@@ -615,5 +630,47 @@ pub(crate) fn edge_pair_fault(
             SegmentIntersection::Touch => Some("touch"),
             SegmentIntersection::Overlap => Some("overlap"),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p(x: f64, y: f64) -> Point {
+        Point::new(x, y)
+    }
+
+    fn set() -> ContourSet {
+        ContourSet::new(
+            Aabb {
+                min: p(0.0, 0.0),
+                max: p(100.0, 100.0),
+            },
+            20.0,
+        )
+    }
+
+    #[test]
+    fn add_ring_refuses_crossings_and_touches_without_using_an_id() {
+        let mut s = set();
+        // A figure eight crosses itself.
+        let eight = [p(10., 10.), p(22., 22.), p(22., 10.), p(10., 18.)];
+        assert_eq!(s.add_ring(&eight), Err(RingError::Intersects));
+        // A spike folding back onto its own edge.
+        let fold = [p(10., 10.), p(20., 10.), p(15., 10.), p(15., 15.)];
+        assert_eq!(s.add_ring(&fold), Err(RingError::Intersects));
+        let a = s.add_ring(&[p(10., 10.), p(20., 10.), p(20., 20.), p(10., 20.)]);
+        assert_eq!(a, Ok(ContourId(0)));
+        // Crossing the first ring, and touching it at a vertex.
+        let cross = [p(15., 15.), p(30., 15.), p(30., 30.), p(15., 30.)];
+        assert_eq!(s.add_ring(&cross), Err(RingError::Intersects));
+        let touch = [p(20., 20.), p(30., 20.), p(30., 30.), p(20., 30.)];
+        assert_eq!(s.add_ring(&touch), Err(RingError::Intersects));
+        // Refusals left nothing behind: the next ring gets id 1 and the set is sound.
+        let b = s.add_ring(&[p(40., 40.), p(50., 40.), p(50., 50.), p(40., 50.)]);
+        assert_eq!(b, Ok(ContourId(1)));
+        assert_eq!(s.vertex_count(), 8);
+        s.sanity_check().unwrap();
     }
 }
