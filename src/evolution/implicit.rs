@@ -68,7 +68,8 @@ pub struct Implicit {
     /// The image the contour positions are read from, and a smoother copy that decides
     /// speeds (so noise does not stop or leak the fronts).
     image: Vec<f32>,
-    smooth: Vec<f32>,
+    /// Speed of the front that may conquer each pixel (0: never), from the smooth copy.
+    speed: Vec<f32>,
     model: IntensityModel,
     in_r0: Vec<bool>,
     owner: Vec<u32>,
@@ -109,7 +110,7 @@ impl Implicit {
             w,
             h,
             image: image.data.clone(),
-            smooth: image.blur5().blur5().data,
+            speed: Vec::new(),
             model,
             in_r0,
             owner: vec![NONE; w * h],
@@ -126,6 +127,18 @@ impl Implicit {
             cuts: 0,
         };
         e.label_components();
+        let smooth = image.blur5().blur5();
+        e.speed = (0..w * h)
+            .map(|i| {
+                let sc = model.score(smooth.data[i] as f64);
+                let s = if e.in_r0[i] { -sc } else { sc };
+                if s > 0.0 {
+                    s.clamp(MIN_SPEED, 1.0) as f32
+                } else {
+                    0.0
+                }
+            })
+            .collect();
         for i in 0..w * h {
             if e.eligible(i) && e.neighbours(i).any(|u| e.known(u, e.in_r0[i]).is_finite()) {
                 e.update(i);
@@ -175,38 +188,37 @@ impl Implicit {
         }
     }
 
+    /// 4-neighbours inside the image (a fixed array and its length: no allocation).
+    #[inline]
+    fn neighbours4(&self, i: usize) -> ([usize; 4], usize) {
+        let (x, y, w, h) = (i % self.w, i / self.w, self.w, self.h);
+        let mut out = [0; 4];
+        let mut n = 0;
+        for (ok, j) in [
+            (x + 1 < w, i + 1),
+            (x > 0, i.wrapping_sub(1)),
+            (y + 1 < h, i + w),
+            (y > 0, i.wrapping_sub(w)),
+        ] {
+            if ok {
+                out[n] = j;
+                n += 1;
+            }
+        }
+        (out, n)
+    }
+
     /// 4-neighbours inside the image.
     #[inline]
     fn neighbours(&self, i: usize) -> impl Iterator<Item = usize> {
-        let (x, y, w, h) = (i % self.w, i / self.w, self.w, self.h);
-        [
-            (x + 1 < w).then(|| i + 1),
-            (x > 0).then(|| i - 1),
-            (y + 1 < h).then(|| i + w),
-            (y > 0).then(|| i - w),
-        ]
-        .into_iter()
-        .flatten()
-    }
-
-    #[inline]
-    fn score(&self, i: usize) -> f64 {
-        self.model.score(self.smooth[i] as f64)
+        let (a, n) = self.neighbours4(i);
+        a.into_iter().take(n)
     }
 
     /// Speed of the front that may conquer pixel `i` (0: never).
     #[inline]
     fn speed(&self, i: usize) -> f64 {
-        let s = if self.in_r0[i] {
-            -self.score(i)
-        } else {
-            self.score(i)
-        };
-        if s > 0.0 {
-            s.clamp(MIN_SPEED, 1.0)
-        } else {
-            0.0
-        }
+        self.speed[i] as f64
     }
 
     /// Whether a front may still conquer `i`.
@@ -310,13 +322,14 @@ impl Implicit {
         self.state[i] = DONE;
         self.conquered += 1;
         self.last = self.t[i];
-        let nbrs: Vec<usize> = self.neighbours(i).collect();
-        for &u in &nbrs {
+        let (nbrs, k) = self.neighbours4(i);
+        let nbrs = &nbrs[..k];
+        for &u in nbrs {
             if self.owner[u] != NONE && self.owner[u] != a {
                 self.place_cut(i, u);
             }
         }
-        for u in nbrs {
+        for &u in nbrs {
             if self.eligible(u) && !self.in_r0[u] {
                 self.update(u);
             }
@@ -359,8 +372,8 @@ impl Implicit {
         self.state[i] = DONE;
         self.conquered += 1;
         self.last = self.t[i];
-        let nbrs: Vec<usize> = self.neighbours(i).collect();
-        for u in nbrs {
+        let (nbrs, k) = self.neighbours4(i);
+        for &u in &nbrs[..k] {
             if self.eligible(u) && self.in_r0[u] {
                 self.update(u);
             }
