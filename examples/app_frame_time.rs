@@ -51,6 +51,7 @@ fn main() {
     harness.state_mut().settings.speed = 1.0;
     harness.state_mut().playing = true;
     let mut frame_ms = Vec::new();
+    let mut parts = Vec::new();
     let mut sizes = Vec::new();
     for _ in 0..30 {
         let before = harness.state().shown;
@@ -61,6 +62,7 @@ fn main() {
             break; // converged: nothing was stepped
         }
         frame_ms.push(ms);
+        parts.push((harness.state().step_ms, harness.state().draw_ms));
         sizes.push(harness.state().shown_record().unwrap().vertices);
     }
     assert!(frame_ms.len() >= 3, "measured while evolving");
@@ -72,6 +74,13 @@ fn main() {
         sizes.iter().max().unwrap(),
         frame_ms[frame_ms.len() / 2],
         frame_ms[frame_ms.len() - 1]
+    );
+    parts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let steps = parts[parts.len() / 2].0;
+    parts.sort_by(|a, b| a.1.total_cmp(&b.1));
+    println!(
+        "of which: evolution step (with recording) median {steps:.2} ms, canvas {:.2} ms",
+        parts[parts.len() / 2].1
     );
     // Paused: the regions get filled (spade triangulation), once per frame shown.
     harness.state_mut().playing = false;

@@ -1,8 +1,9 @@
 //! Filled regions with holes for the canvas: a constrained Delaunay triangulation (spade)
-//! of all ring edges; a triangle is kept when its centroid lies in the region.
+//! of all ring edges. Which triangles are inside follows by one walk over the faces from
+//! the convex hull: crossing a ring edge (a constraint) flips inside and outside, since
+//! rings never cross (even-odd equals the region).
 
 use super::RingView;
-use crate::check::{region_has, rings_of};
 use crate::geometry::Point;
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
@@ -29,18 +30,36 @@ impl FillMesh {
                 }
             }
         }
-        let region = rings_of(&rings.iter().map(|r| r.points.clone()).collect::<Vec<_>>());
+        // Parity per face index: -1 unseen, 0 outside, 1 inside.
+        let mut parity = vec![-1i8; cdt.num_all_faces()];
+        let mut stack = Vec::new();
+        for h in cdt.convex_hull() {
+            if let Some(f) = h.rev().face().as_inner() {
+                let p = h.is_constraint_edge() as i8;
+                if parity[f.fix().index()] < 0 {
+                    parity[f.fix().index()] = p;
+                    stack.push(f);
+                }
+            }
+        }
+        while let Some(f) = stack.pop() {
+            let p = parity[f.fix().index()];
+            for e in f.adjacent_edges() {
+                if let Some(g) = e.rev().face().as_inner() {
+                    let i = g.fix().index();
+                    if parity[i] < 0 {
+                        parity[i] = p ^ e.is_constraint_edge() as i8;
+                        stack.push(g);
+                    }
+                }
+            }
+        }
         let triangles = cdt
             .inner_faces()
-            .filter_map(|f| {
-                let v = f
-                    .vertices()
-                    .map(|v| Point::new(v.position().x, v.position().y));
-                let c = Point::new(
-                    (v[0].x + v[1].x + v[2].x) / 3.0,
-                    (v[0].y + v[1].y + v[2].y) / 3.0,
-                );
-                region_has(&region, c).then_some(v)
+            .filter(|f| parity[f.fix().index()] == 1)
+            .map(|f| {
+                f.vertices()
+                    .map(|v| Point::new(v.position().x, v.position().y))
             })
             .collect();
         FillMesh { triangles }

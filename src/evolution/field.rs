@@ -73,28 +73,44 @@ impl Field {
 
     /// Separable blur with an odd symmetric kernel, clamped borders.
     pub fn blur(&self, k: &[f32]) -> Field {
-        let r = (k.len() / 2) as isize;
+        let r = k.len() / 2;
         let (w, h) = (self.width, self.height);
         let mut tmp = vec![0f32; w * h];
         for y in 0..h {
             let row = &self.data[y * w..(y + 1) * w];
-            for x in 0..w {
+            let dst = &mut tmp[y * w..(y + 1) * w];
+            let clamped = |x: usize| -> f32 {
                 let mut s = 0.0;
                 for (i, &kv) in k.iter().enumerate() {
-                    let xi = (x as isize + i as isize - r).clamp(0, w as isize - 1) as usize;
-                    s += kv * row[xi];
+                    let xi = (x as isize + i as isize - r as isize).clamp(0, w as isize - 1);
+                    s += kv * row[xi as usize];
                 }
-                tmp[y * w + x] = s;
+                s
+            };
+            if w <= 2 * r {
+                for (x, d) in dst.iter_mut().enumerate() {
+                    *d = clamped(x);
+                }
+                continue;
+            }
+            // Interior without clamps (the hot loop), borders with them.
+            for x in 0..r {
+                dst[x] = clamped(x);
+                dst[w - 1 - x] = clamped(w - 1 - x);
+            }
+            for (x, d) in dst.iter_mut().enumerate().take(w - r).skip(r) {
+                let win = &row[x - r..=x + r];
+                *d = win.iter().zip(k).map(|(&v, &kv)| v * kv).sum();
             }
         }
         let mut out = vec![0f32; w * h];
         for y in 0..h {
+            let dst = &mut out[y * w..(y + 1) * w];
             for (i, &kv) in k.iter().enumerate() {
-                let yi = (y as isize + i as isize - r).clamp(0, h as isize - 1) as usize;
+                let yi = (y as isize + i as isize - r as isize).clamp(0, h as isize - 1) as usize;
                 let src = &tmp[yi * w..(yi + 1) * w];
-                let dst = &mut out[y * w..(y + 1) * w];
-                for x in 0..w {
-                    dst[x] += kv * src[x];
+                for (d, &v) in dst.iter_mut().zip(src) {
+                    *d += kv * v;
                 }
             }
         }
@@ -102,44 +118,83 @@ impl Field {
     }
 }
 
-/// One pyramid level with its gradient fields, computed once so that a force evaluation
-/// costs a handful of bilinear samples.
+/// One pyramid level with its gradient fields, computed once and stored per pixel as
+/// one texel (intensity, ∂x, ∂y, |∇|), so a force evaluation costs a few bilinear fetches.
 #[derive(Clone, Debug)]
 pub struct Level {
     pub image: Field,
-    /// Central differences per pixel, x and y.
-    pub gx: Field,
-    pub gy: Field,
-    /// Gradient magnitude.
-    pub gmag: Field,
+    texels: Vec<[f32; 4]>,
+}
+
+/// What [`Level::sample`] returns at a point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Texel {
+    pub value: f64,
+    pub gradient: Point,
+    pub gmag: f64,
 }
 
 impl Level {
     pub fn new(image: Field) -> Self {
         let (w, h) = (image.width, image.height);
-        let (mut gx, mut gy, mut gm) = (vec![0f32; w * h], vec![0f32; w * h], vec![0f32; w * h]);
+        let mut texels = Vec::with_capacity(w * h);
         for y in 0..h {
+            let (up, down) = (y.saturating_sub(1), (y + 1).min(h - 1));
+            let (row, r_up, r_down) = (
+                &image.data[y * w..(y + 1) * w],
+                &image.data[up * w..(up + 1) * w],
+                &image.data[down * w..(down + 1) * w],
+            );
             for x in 0..w {
-                let dx = 0.5 * (image.at((x + 1).min(w - 1), y) - image.at(x.saturating_sub(1), y));
-                let dy = 0.5 * (image.at(x, (y + 1).min(h - 1)) - image.at(x, y.saturating_sub(1)));
-                let i = y * w + x;
-                gx[i] = dx;
-                gy[i] = dy;
-                gm[i] = (dx * dx + dy * dy).sqrt();
+                // Central differences, one-sided at the border.
+                let dx = 0.5 * (row[(x + 1).min(w - 1)] - row[x.saturating_sub(1)]);
+                let dy = 0.5 * (r_down[x] - r_up[x]);
+                texels.push([row[x], dx, dy, (dx * dx + dy * dy).sqrt()]);
             }
         }
-        Level {
-            gx: Field::new(w, h, gx),
-            gy: Field::new(w, h, gy),
-            gmag: Field::new(w, h, gm),
-            image,
+        Level { texels, image }
+    }
+
+    /// Bilinear texel at `p` (pixel-centre convention, clamped at the borders).
+    #[inline]
+    pub fn sample(&self, p: Point) -> Texel {
+        let [v, gx, gy, gm] = self.bilinear(p);
+        Texel {
+            value: v,
+            gradient: Point::new(gx, gy),
+            gmag: gm,
         }
+    }
+
+    /// Bilinear gradient magnitude at `p`.
+    #[inline]
+    pub fn gmag(&self, p: Point) -> f64 {
+        self.bilinear(p)[3]
     }
 
     /// Gradient at `p` (bilinear in the precomputed differences).
     #[inline]
     pub fn gradient(&self, p: Point) -> Point {
-        Point::new(self.gx.sample(p), self.gy.sample(p))
+        self.sample(p).gradient
+    }
+
+    #[inline]
+    fn bilinear(&self, p: Point) -> [f64; 4] {
+        let (w, h) = (self.image.width, self.image.height);
+        let fx = (p.x - 0.5).clamp(0.0, (w - 1) as f64);
+        let fy = (p.y - 0.5).clamp(0.0, (h - 1) as f64);
+        let (x0, y0) = (fx as usize, fy as usize);
+        let (x1, y1) = ((x0 + 1).min(w - 1), (y0 + 1).min(h - 1));
+        let (tx, ty) = (fx - x0 as f64, fy - y0 as f64);
+        let (a, b) = (&self.texels[y0 * w + x0], &self.texels[y0 * w + x1]);
+        let (c, d) = (&self.texels[y1 * w + x0], &self.texels[y1 * w + x1]);
+        let mut out = [0.0; 4];
+        for k in 0..4 {
+            let top = a[k] as f64 + (b[k] - a[k]) as f64 * tx;
+            let bottom = c[k] as f64 + (d[k] - c[k]) as f64 * tx;
+            out[k] = top + (bottom - top) * ty;
+        }
+        out
     }
 }
 
@@ -199,8 +254,29 @@ mod tests {
         assert!(p
             .levels
             .iter()
-            .all(|l| l.gmag.data.iter().all(|&v| v.abs() < 1e-6)));
+            .all(|l| l.gmag(Point::new(3.3, 2.7)).abs() < 1e-6));
         let ramp = Level::new(Field::new(4, 1, vec![0.0, 1.0, 2.0, 3.0]));
         assert_eq!(ramp.gradient(Point::new(2.0, 0.5)).x, 1.0);
+        assert_eq!(ramp.sample(Point::new(2.0, 0.5)).value, 1.5);
+        // The blur's fast interior agrees with the clamped border formula.
+        let noisy = Field::new(9, 3, (0..27).map(|i| ((i * 7) % 5) as f32).collect());
+        let b = noisy.blur5();
+        let direct = |x: usize, y: usize| -> f32 {
+            let k = [1.0, 4.0, 6.0, 4.0, 1.0];
+            let mut s = 0.0;
+            for (j, &ky) in k.iter().enumerate() {
+                for (i, &kx) in k.iter().enumerate() {
+                    let xi = (x as isize + i as isize - 2).clamp(0, 8) as usize;
+                    let yi = (y as isize + j as isize - 2).clamp(0, 2) as usize;
+                    s += kx * ky * noisy.at(xi, yi);
+                }
+            }
+            s / 256.0
+        };
+        for y in 0..3 {
+            for x in 0..9 {
+                assert!((b.at(x, y) - direct(x, y)).abs() < 1e-5, "{x},{y}");
+            }
+        }
     }
 }

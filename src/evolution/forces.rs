@@ -161,22 +161,21 @@ pub fn normal_speed(
     x: Point,
     n: Point,
 ) -> NormalSpeed {
-    let i = level.image.sample(x);
-    let s = model.score(i);
+    let t = level.sample(x);
+    let s = model.score(t.value);
     let region = s.clamp(-1.0, 1.0);
     let contrast = (model.object - model.background).abs().max(1e-6);
     // Balloon with the object's intensity window (scores 0 to 2.5): out inside it, in
     // outside, ramping over a quarter of the score at the window's edges so that it
     // never chatters across an edge; faded where the gradient says an edge is near.
     let window = ((s / 0.25).min((2.5 - s) / 0.25)).clamp(-1.0, 1.0);
-    let g = level.gradient(x);
-    let gmag = g.norm() / contrast;
+    let gmag = t.gradient.norm() / contrast;
     let stop = 1.0 / (1.0 + 16.0 * gmag * gmag);
     let balloon = window * stop;
     // Edge attraction: climb the gradient magnitude along the normal (half a pixel each
     // way: halos and texture make wider differences chatter).
-    let ahead = level.gmag.sample(x + n * 0.5);
-    let behind = level.gmag.sample(x - n * 0.5);
+    let ahead = level.gmag(x + n * 0.5);
+    let behind = level.gmag(x - n * 0.5);
     let edge = (2.0 * (ahead - behind) / contrast).clamp(-1.0, 1.0);
     NormalSpeed {
         speed: w.region * region + w.balloon * balloon + w.edge * edge,
