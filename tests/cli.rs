@@ -126,6 +126,34 @@ fn public_cases_get_topology_and_dice() {
     );
 }
 
+/// The topology-keeping engines from the command line: each case ends with the topology
+/// it started with (seeds: one outer ring per seed; a wrap: one), no events, the mode
+/// and the held contacts in the JSON, and a note on stderr where fronts were held apart.
+#[test]
+fn preserve_and_implicit_keep_the_initial_topology() {
+    for mode in ["preserve", "implicit"] {
+        for (name, outer) in [("bridge_merge", 2), ("ring_seed", 1), ("blobs_wrap", 1)] {
+            let (doc, mask) = run_case(name, &["--mode", mode]);
+            let contours = doc["contours"].as_array().unwrap();
+            let holes = contours.iter().filter(|c| c["hole"] == true).count();
+            assert_eq!((contours.len() - holes, holes), (outer, 0), "{mode} {name}");
+            assert!(
+                doc["events"].as_array().unwrap().is_empty(),
+                "{mode} {name}"
+            );
+            assert_eq!(doc["mode"], mode);
+            assert!(
+                doc["held"].as_u64().unwrap() > 0,
+                "{mode} {name}: fronts met"
+            );
+            let (_, _, m) = gray_png(&mask);
+            let (_, _, t) = gray_png(&cases_dir().join(name).join("truth.png"));
+            let d = dice(&m, &t);
+            assert!(d >= 0.95, "{mode} {name}: dice {d}");
+        }
+    }
+}
+
 #[test]
 fn events_are_reported_with_frames() {
     let (doc, _) = run_case("bridge_merge", &[]);

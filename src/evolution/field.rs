@@ -185,14 +185,15 @@ impl Level {
         let fy = (p.y - 0.5).clamp(0.0, (h - 1) as f64);
         let (x0, y0) = (fx as usize, fy as usize);
         let (x1, y1) = ((x0 + 1).min(w - 1), (y0 + 1).min(h - 1));
-        let (tx, ty) = (fx - x0 as f64, fy - y0 as f64);
-        let (a, b) = (&self.texels[y0 * w + x0], &self.texels[y0 * w + x1]);
-        let (c, d) = (&self.texels[y1 * w + x0], &self.texels[y1 * w + x1]);
+        // Weights in f32, like the texels: four lanes at once.
+        let (tx, ty) = ((fx - x0 as f64) as f32, (fy - y0 as f64) as f32);
+        let (a, b) = (self.texels[y0 * w + x0], self.texels[y0 * w + x1]);
+        let (c, d) = (self.texels[y1 * w + x0], self.texels[y1 * w + x1]);
         let mut out = [0.0; 4];
         for k in 0..4 {
-            let top = a[k] as f64 + (b[k] - a[k]) as f64 * tx;
-            let bottom = c[k] as f64 + (d[k] - c[k]) as f64 * tx;
-            out[k] = top + (bottom - top) * ty;
+            let top = a[k] + (b[k] - a[k]) * tx;
+            let bottom = c[k] + (d[k] - c[k]) * tx;
+            out[k] = (top + (bottom - top) * ty) as f64;
         }
         out
     }

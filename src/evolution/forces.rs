@@ -105,7 +105,8 @@ impl IntensityModel {
 pub fn otsu_means(image: &Field) -> (f64, f64) {
     let mut hist = [0u64; 256];
     for &v in &image.data {
-        hist[(v.clamp(0.0, 1.0) * 255.0).round() as usize] += 1;
+        // Round half up by truncation (values are non-negative): no libm call per pixel.
+        hist[(v.clamp(0.0, 1.0) * 255.0 + 0.5) as usize] += 1;
     }
     let total: u64 = hist.iter().sum();
     let sum_all: f64 = hist
