@@ -60,7 +60,7 @@ fn time(label: &str, img: &Field, init: &[Shape], params: Params) {
         return;
     }
     let mut times = Vec::new();
-    let (mut frames, mut vertices, mut contours) = (0, 0, 0);
+    let (mut frames, mut vertices, mut contours, mut holes) = (0, 0, 0, 0);
     for _ in 0..3 {
         let t = Instant::now();
         let mut ev = Evolver::new(img, init, params.clone()).expect("valid set-up");
@@ -69,10 +69,15 @@ fn time(label: &str, img: &Field, init: &[Shape], params: Params) {
         frames = ev.frames();
         vertices = ev.contours().vertex_count();
         contours = ev.contours().contour_count();
+        holes = ev
+            .contours()
+            .contour_ids()
+            .filter(|&id| ev.contours().is_hole(id))
+            .count();
     }
     times.sort_by(f64::total_cmp);
     println!(
-        "{label:<28} median {:>7.3} s  (min {:.3})  frames {frames:>5}  contours {contours:>5}  vertices {vertices:>7}",
+        "{label:<28} median {:>7.3} s  (min {:.3})  frames {frames:>5}  contours {contours:>5} ({holes} holes)  vertices {vertices:>7}",
         times[1], times[0]
     );
 }

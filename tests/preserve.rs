@@ -51,22 +51,32 @@ fn min_gap(ev: &Evolver) -> f64 {
         .fold(f64::MAX, f64::min)
 }
 
-#[test]
-fn two_seeds_in_one_object_merge_or_stop_apart() {
-    // A wide ellipse-like slab; two seeds near its ends.
+/// A wide ellipse-like slab, and seeds at x = 40 and `x2` on its axis.
+fn slab_and_seeds(x2: f64) -> (Field, [Shape; 2]) {
     let img = image(160, 80, |x, y| {
         ((x - 80.0) / 70.0).powi(2) + ((y - 40.0) / 28.0).powi(2) < 1.0
     });
-    let seeds = [
-        Shape::Disk {
-            center: Point::new(40.0, 40.0),
-            radius: 4.0,
-        },
-        Shape::Disk {
-            center: Point::new(120.0, 40.0),
-            radius: 4.0,
-        },
-    ];
+    let seed = |x: f64| Shape::Disk {
+        center: Point::new(x, 40.0),
+        radius: 4.0,
+    };
+    (img, [seed(40.0), seed(x2)])
+}
+
+/// Vertices of the first contour within a pixel of the second: the contact line.
+fn contact(ev: &Evolver) -> Vec<Point> {
+    let s = ev.contours();
+    let ids: Vec<_> = s.contour_ids().collect();
+    let (a, b) = (s.ring_points(ids[0]), s.ring_points(ids[1]));
+    a.iter()
+        .copied()
+        .filter(|p| b.iter().any(|q| p.dist(*q) < 1.0))
+        .collect()
+}
+
+#[test]
+fn two_seeds_in_one_object_merge_or_stop_apart() {
+    let (img, seeds) = slab_and_seeds(120.0);
     assert_eq!(counts(&run(&img, &seeds, Mode::Adaptive)), (1, 0));
     let kept = run(&img, &seeds, Mode::Preserve);
     assert_eq!(counts(&kept), (2, 0));
@@ -79,25 +89,11 @@ fn two_seeds_in_one_object_merge_or_stop_apart() {
     assert!(imp.events().is_empty());
     let gap = min_gap(&imp);
     assert!(gap > 0.0 && gap <= 1.0, "implicit gap {gap}");
-    // The contact line: vertices of one contour within a pixel of the other lie on the
-    // true midline x = 80 (equal seeds, symmetric object) within half a pixel.
-    let s = imp.contours();
-    let ids: Vec<_> = s.contour_ids().collect();
-    let (a, b) = (s.ring_points(ids[0]), s.ring_points(ids[1]));
-    let contact: Vec<Point> = a
-        .iter()
-        .copied()
-        .filter(|p| b.iter().any(|q| p.dist(*q) < 1.0))
-        .collect();
-    assert!(
-        contact.len() >= 20,
-        "contact line of {} vertices",
-        contact.len()
-    );
-    let worst = contact
-        .iter()
-        .map(|p| (p.x - 80.0).abs())
-        .fold(0.0, f64::max);
+    // The contact line lies on the true midline x = 80 (equal seeds, symmetric object)
+    // within half a pixel.
+    let line = contact(&imp);
+    assert!(line.len() >= 20, "contact line of {} vertices", line.len());
+    let worst = line.iter().map(|p| (p.x - 80.0).abs()).fold(0.0, f64::max);
     assert!(worst <= 0.5, "contact line {worst} px off the midline");
 }
 
@@ -105,29 +101,14 @@ fn two_seeds_in_one_object_merge_or_stop_apart() {
 fn implicit_contact_line_follows_arrival_times() {
     // Seeds at different distances from the middle: the fronts meet where their arrival
     // times are equal, halfway between the seeds' edges (x = (44 + 100) / 2 = 72).
-    let img = image(160, 80, |x, y| {
-        ((x - 80.0) / 70.0).powi(2) + ((y - 40.0) / 28.0).powi(2) < 1.0
-    });
-    let seeds = [
-        Shape::Disk {
-            center: Point::new(40.0, 40.0),
-            radius: 4.0,
-        },
-        Shape::Disk {
-            center: Point::new(104.0, 40.0),
-            radius: 4.0,
-        },
-    ];
+    let (img, seeds) = slab_and_seeds(104.0);
     let imp = run(&img, &seeds, Mode::Implicit);
     assert_eq!(counts(&imp), (2, 0));
-    let s = imp.contours();
-    let ids: Vec<_> = s.contour_ids().collect();
-    let (a, b) = (s.ring_points(ids[0]), s.ring_points(ids[1]));
     // On the axis y = 40 the contact point is where the distances from both seed edges
     // agree; away from it the line bends, so look near the axis only.
-    let on_axis: Vec<f64> = a
+    let on_axis: Vec<f64> = contact(&imp)
         .iter()
-        .filter(|p| (p.y - 40.0).abs() < 1.0 && b.iter().any(|q| p.dist(*q) < 1.0))
+        .filter(|p| (p.y - 40.0).abs() < 1.0)
         .map(|p| p.x)
         .collect();
     assert!(!on_axis.is_empty());
