@@ -28,15 +28,7 @@ shot split
 # 2. Play to convergence: final contours and the plots.
 button $play 8
 shot final
-# 3. Side by side: the implicit engine beside the adaptive one, same wrap, to the end.
-button $reset
-button $beside
-button 1085 108
-button $play 8
-shot side_by_side
-button $beside
-button 1085 39
-# 4. Reset, select the wrap rectangle and delete it, then place seeds in three cells.
+# 3. Reset, select the wrap rectangle and delete it, then place seeds in three cells.
 button $reset
 button $select
 click_image 6 150
@@ -45,3 +37,9 @@ button $seed
 for c in "318 98" "230 190" "145 125" "455 310"; do click_image $c; done
 sleep 0.5
 shot seeds
+
+# 4. Side by side: the implicit engine beside the adaptive one on those seeds, to the end.
+button $beside
+button 1085 108
+button $play 8
+shot side_by_side
