@@ -221,7 +221,7 @@ def main():
     names = [n for n in sorted(os.listdir(cases)) if os.path.exists(os.path.join(cases, n, "case.json"))]
     head = f"{'case':<16} {'method':<24} {'seconds':>9} {'dice':>7} {'comp':>5} {'holes':>5} {'topo':>5}"
     print(head)
-    totals = {"ours": 0.0}
+    totals = {}
     ratios = []
     for name in names:
         d = os.path.join(cases, name)

@@ -414,10 +414,12 @@ impl Evolver {
         self.level_frames += 1;
         let vertices = self.set.vertex_count().max(1);
         let share = active as f64 / vertices as f64;
-        // Steady: every contour's area changed little over the last ten frames (a tip
-        // still growing along a thin structure is few vertices but steady area growth).
-        // Per contour, not in total: on a large image with many settled cells, one region
-        // still shrinking is a tiny share of the total area, yet it is not done.
+        // Steady: no contour's area drifted over the last ten frames (a tip still growing
+        // along a thin structure is few vertices but steady area growth). Judged per
+        // contour, not in total: on a large image with many settled cells, one region
+        // still shrinking is a tiny share of the total area, yet it is not done. Drift is
+        // a net change beyond the tolerance that is also most of the path the area took:
+        // contours chattering in noise go up and down and count as steady.
         let mut now: Vec<(u32, f64)> = self
             .set
             .contour_ids()
@@ -427,12 +429,32 @@ impl Evolver {
         self.areas.push(now);
         let steady = |tol: f64| {
             let n = self.areas.len();
-            n > 10
-                && self.areas[n - 1].iter().all(|&(id, a)| {
-                    let then = &self.areas[n - 11];
-                    then.binary_search_by_key(&id, |&(i, _)| i)
-                        .is_ok_and(|k| (a - then[k].1).abs() <= tol * a.abs() + scale * scale)
-                })
+            if n <= 10 {
+                return false;
+            }
+            let at = |k: usize, id: u32| {
+                let f = &self.areas[k];
+                f.binary_search_by_key(&id, |&(i, _)| i)
+                    .ok()
+                    .map(|j| f[j].1)
+            };
+            self.areas[n - 1].iter().all(|&(id, a)| {
+                let Some(then) = at(n - 11, id) else {
+                    return false; // too young to judge
+                };
+                let net = (a - then).abs();
+                if net <= tol * a.abs() + scale * scale {
+                    return true;
+                }
+                let mut path = 0.0;
+                let mut prev = then;
+                for k in n - 10..n {
+                    let Some(x) = at(k, id) else { return false };
+                    path += (x - prev).abs();
+                    prev = x;
+                }
+                net < 0.5 * path
+            })
         };
         let quiet = share < self.params.converged_share && steady(0.002);
         self.calm = if quiet { self.calm + 1 } else { 0 };
