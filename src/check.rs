@@ -390,21 +390,33 @@ pub fn random_rings_in(rng: &mut Rng, k: usize, max_edge: f64, kind: BroadPhaseK
     set
 }
 
-/// Adds a star-shaped ring (with a hole half the time) centred at `c` if it fits.
+/// Adds a star-shaped ring (with a hole half the time) centred at `c` if it fits: it must
+/// neither cross nor enclose nor sit inside what is there (add_ring only refuses
+/// crossings; a star around small leftover rings would nest outer in outer).
 pub fn add_star(set: &mut ContourSet, rng: &mut Rng, c: Point) -> bool {
     let max_edge = set.max_edge();
     let r1 = rng.range(7.0, 13.0);
     let k = ((std::f64::consts::TAU * r1 * 1.35 / max_edge).ceil() as usize).max(5) + rng.below(6);
     let outer = star_ring(rng, c, r1 * 0.6, r1, k, false);
-    if set.add_ring(&outer).is_err() {
-        return false;
+    let fits = |set: &mut ContourSet, id| {
+        let ok = set.sanity_check().is_ok();
+        if !ok {
+            set.remove_ring(id);
+        }
+        ok
+    };
+    match set.add_ring(&outer) {
+        Ok(id) if fits(set, id) => {}
+        _ => return false,
     }
     if rng.below(2) == 0 {
         let hr = r1 * 0.45;
         let kh =
             ((std::f64::consts::TAU * hr * 1.35 / max_edge).ceil() as usize).max(3) + rng.below(3);
         let hole = star_ring(rng, c, hr * 0.6, hr, kh, true);
-        let _ = set.add_ring(&hole);
+        if let Ok(id) = set.add_ring(&hole) {
+            fits(set, id);
+        }
     }
     true
 }
