@@ -171,24 +171,17 @@ pub fn side_panel(app: &mut TopoApp, ui: &mut egui::Ui) {
                 ui.collapsing("Parameters", |ui| {
                     let s = &mut app.settings;
                     let mut changed = false;
-                    changed |= ui
-                        .add(egui::Slider::new(&mut s.weights.region, 0.0..=2.0).text("region"))
-                        .changed();
-                    changed |= ui
-                        .add(egui::Slider::new(&mut s.weights.balloon, 0.0..=1.0).text("balloon"))
-                        .changed();
-                    changed |= ui
-                        .add(egui::Slider::new(&mut s.weights.edge, 0.0..=1.0).text("edge"))
-                        .changed();
-                    changed |= ui
-                        .add(egui::Slider::new(&mut s.weights.stretch, 0.0..=1.0).text("stretch"))
-                        .changed();
-                    changed |= ui
-                        .add(egui::Slider::new(&mut s.weights.bend, 0.0..=0.5).text("bend"))
-                        .changed();
-                    changed |= ui
-                        .add(egui::Slider::new(&mut s.step, 0.1..=1.5).text("step (× grid)"))
-                        .changed();
+                    let w = &mut s.weights;
+                    for (value, range, label) in [
+                        (&mut w.region, 0.0..=2.0, "region"),
+                        (&mut w.balloon, 0.0..=1.0, "balloon"),
+                        (&mut w.edge, 0.0..=1.0, "edge"),
+                        (&mut w.stretch, 0.0..=1.0, "stretch"),
+                        (&mut w.bend, 0.0..=0.5, "bend"),
+                        (&mut s.step, 0.1..=1.5, "step (× grid)"),
+                    ] {
+                        changed |= ui.add(egui::Slider::new(value, range).text(label)).changed();
+                    }
                     ui.add(
                         egui::Slider::new(&mut s.min_area, 0.0..=500.0)
                             .text("min area px² (export)"),

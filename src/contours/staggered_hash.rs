@@ -82,11 +82,6 @@ impl StaggeredHash {
         }
     }
 
-    /// Side of one box, pixels.
-    pub fn box_size(&self) -> f64 {
-        1.0 / self.inv_l
-    }
-
     /// Buckets per system.
     pub fn table_size(&self) -> usize {
         1 << self.bits

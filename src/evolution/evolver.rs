@@ -152,7 +152,7 @@ pub struct Evolver {
     frame: usize,
     calm: usize,
     level_frames: usize,
-    /// Region area after each frame of the current level.
+    /// Per-contour areas (sorted by id) after each of the last frames of this level.
     areas: Vec<Vec<(u32, f64)>>,
     converged: bool,
     /// Per vertex id: frames since it last moved noticeably (saturating).
@@ -426,6 +426,10 @@ impl Evolver {
             .map(|id| (id.0, self.set.signed_area(id)))
             .collect();
         now.sort_unstable_by_key(|&(id, _)| id);
+        // Eleven frames are all the test below reads.
+        if self.areas.len() == 11 {
+            self.areas.remove(0);
+        }
         self.areas.push(now);
         let steady = |tol: f64| {
             let n = self.areas.len();

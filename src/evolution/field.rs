@@ -172,12 +172,6 @@ impl Level {
         self.bilinear(p)[3]
     }
 
-    /// Gradient at `p` (bilinear in the precomputed differences).
-    #[inline]
-    pub fn gradient(&self, p: Point) -> Point {
-        self.sample(p).gradient
-    }
-
     #[inline]
     fn bilinear(&self, p: Point) -> [f64; 4] {
         let (w, h) = (self.image.width, self.image.height);
@@ -257,7 +251,7 @@ mod tests {
             .iter()
             .all(|l| l.gmag(Point::new(3.3, 2.7)).abs() < 1e-6));
         let ramp = Level::new(Field::new(4, 1, vec![0.0, 1.0, 2.0, 3.0]));
-        assert_eq!(ramp.gradient(Point::new(2.0, 0.5)).x, 1.0);
+        assert_eq!(ramp.sample(Point::new(2.0, 0.5)).gradient.x, 1.0);
         assert_eq!(ramp.sample(Point::new(2.0, 0.5)).value, 1.5);
         // The blur's fast interior agrees with the clamped border formula.
         let noisy = Field::new(9, 3, (0..27).map(|i| ((i * 7) % 5) as f32).collect());

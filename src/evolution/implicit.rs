@@ -162,11 +162,6 @@ impl Implicit {
         self.heap.is_empty()
     }
 
-    /// Pixels owned by a label (the region's area in pixels).
-    pub fn region_pixels(&self) -> usize {
-        self.owner.iter().filter(|&&o| o != NONE).count()
-    }
-
     fn label_components(&mut self) {
         let mut stack = Vec::new();
         for i in 0..self.w * self.h {
@@ -319,18 +314,24 @@ impl Implicit {
             return;
         }
         self.owner[i] = a;
-        self.state[i] = DONE;
-        self.conquered += 1;
-        self.last = self.t[i];
+        self.settle(i);
         let (nbrs, k) = self.neighbours4(i);
-        let nbrs = &nbrs[..k];
-        for &u in nbrs {
+        for &u in &nbrs[..k] {
             if self.owner[u] != NONE && self.owner[u] != a {
                 self.place_cut(i, u);
             }
         }
-        for &u in nbrs {
-            if self.eligible(u) && !self.in_r0[u] {
+    }
+
+    /// Pixel `i` has changed owner at its arrival time: its front moves on to the
+    /// neighbours on the same side of R₀, and rejected pixels around it are retried.
+    fn settle(&mut self, i: usize) {
+        self.state[i] = DONE;
+        self.conquered += 1;
+        self.last = self.t[i];
+        let (nbrs, k) = self.neighbours4(i);
+        for &u in &nbrs[..k] {
+            if self.in_r0[u] == self.in_r0[i] && self.eligible(u) {
                 self.update(u);
             }
         }
@@ -369,16 +370,7 @@ impl Implicit {
             return;
         }
         self.owner[i] = NONE;
-        self.state[i] = DONE;
-        self.conquered += 1;
-        self.last = self.t[i];
-        let (nbrs, k) = self.neighbours4(i);
-        for &u in &nbrs[..k] {
-            if self.eligible(u) && self.in_r0[u] {
-                self.update(u);
-            }
-        }
-        self.retry_rejected(i);
+        self.settle(i);
     }
 
     fn reject(&mut self, i: usize) {
@@ -417,8 +409,7 @@ impl Implicit {
     /// Arrival-time slope at `v` looking away from `w` (its own front's time per pixel).
     fn slope(&self, v: usize, away: isize) -> f64 {
         let l = self.owner[v];
-        let shrink = false;
-        let tv = self.known(v, shrink);
+        let tv = self.known(v, false);
         let j = v as isize + away;
         let inside = j >= 0 && (j as usize) < self.w * self.h && {
             let (vx, jx) = (v % self.w, j as usize % self.w);
@@ -426,7 +417,7 @@ impl Implicit {
         };
         if inside {
             let j = j as usize;
-            let tj = self.known(j, shrink);
+            let tj = self.known(j, false);
             if self.owner[j] == l && tj.is_finite() && tv > tj {
                 return tv - tj;
             }
@@ -557,7 +548,7 @@ impl Implicit {
                     }
                     let m = o.map(|x| x == l);
                     // Crossed sides: side j joins corners j and j + 1.
-                    let mut pairs: [(usize, usize); 2] = [(0, 0); 2];
+                    let mut pairs = [(0usize, 0usize); 2];
                     let np = if m[0] && m[2] && !m[1] && !m[3] {
                         pairs = [(3, 0), (1, 2)]; // saddle: cut off corner 0, then corner 2
                         2
@@ -565,9 +556,11 @@ impl Implicit {
                         pairs = [(0, 1), (2, 3)];
                         2
                     } else {
-                        let crossed: Vec<usize> =
-                            (0..4).filter(|&j| m[j] != m[(j + 1) % 4]).collect();
-                        pairs[0] = (crossed[0], crossed[1]);
+                        // Exactly two sides are crossed: the first and the last.
+                        let crossed = |j: usize| m[j] != m[(j + 1) % 4];
+                        let first = (0..4).find(|&j| crossed(j)).expect("two crossed sides");
+                        let last = (0..4).rfind(|&j| crossed(j)).expect("two crossed sides");
+                        pairs[0] = (first, last);
                         1
                     };
                     for &(s0, s1) in &pairs[..np] {

@@ -13,7 +13,7 @@
 //! that passes completely through itself disappears without any crossing (Figure 2(g)).
 
 use super::motion_region::MotionRegion;
-use crate::contours::{ContourSet, NIL};
+use crate::contours::ContourSet;
 use crate::geometry::{orient, Aabb};
 
 impl ContourSet {
@@ -27,22 +27,14 @@ impl ContourSet {
         out: &mut Vec<(u32, i32)>,
     ) {
         out.clear();
-        // Rings already decided; any vertex of a ring decides it, so one test per ring.
-        let mut tested = [NIL; 8];
-        let mut ntested = 0;
         for &a in cand {
             let x = self.pos[a as usize];
             if !bounds.contains(x) {
                 continue; // a vertex outside M: its ring is outside (or another vertex says)
             }
+            // Any vertex of a ring decides it; rings found inside are not tested again.
             let l = self.label[a as usize];
-            if exclude.contains(&l) || tested[..ntested].contains(&l) {
-                continue;
-            }
-            if ntested < tested.len() {
-                tested[ntested] = l;
-                ntested += 1;
-            } else if out.iter().any(|&(o, _)| o == l) {
+            if exclude.contains(&l) || out.iter().any(|&(o, _)| o == l) {
                 continue;
             }
             let w = mr.winding(x);
