@@ -35,6 +35,8 @@ fn dice(a: &[u8], b: &[u8]) -> f64 {
 
 /// Runs a case as score_cases.py does; returns the JSON and the mask path.
 fn run_case(name: &str, extra: &[&str]) -> (serde_json::Value, PathBuf) {
+    static RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let run = RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let dir = cases_dir().join(name);
     let meta: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("case.json")).unwrap()).unwrap();
@@ -54,8 +56,10 @@ fn run_case(name: &str, extra: &[&str]) -> (serde_json::Value, PathBuf) {
         init["object"].as_str().unwrap().to_string(),
     ]);
     let (mask, json) = (
-        tmp(&format!("{name}-mask.png")),
-        tmp(&format!("{name}.json")),
+        // Tests run in parallel and may run the same case with other flags: every run
+        // gets its own output names.
+        tmp(&format!("{name}-{run}-mask.png")),
+        tmp(&format!("{name}-{run}.json")),
     );
     args.extend([
         "--mask".into(),
