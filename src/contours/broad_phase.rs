@@ -35,11 +35,27 @@ pub trait BroadPhase {
             }
         }
     }
+    /// The part of the broad phase a query for `b` would read, with the number of
+    /// vertices registered in it; `None` when that part is too large to count cheaply.
+    fn region(&self, b: &Aabb) -> Option<(Region, u32)>;
+    /// Whether vertex `v` is registered in region `r` (counted by [`BroadPhase::region`]).
+    fn in_region(&self, v: u32, r: &Region) -> bool;
     /// Number of registered vertices.
     fn len(&self) -> usize;
     fn is_empty(&self) -> bool {
         self.len() == 0
     }
+}
+
+/// A countable part of a broad phase that holds every vertex lying in some box: a
+/// rectangle of bins, or one bucket of one hash system. Every vertex lying in the box is
+/// registered in the region, so if a walk along the rings meets as many registered
+/// vertices as the region holds, nothing else lies in the box (the quiet-move
+/// certificate of `ContourSet::move_vertex`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Region {
+    Cells { lo: [u32; 2], hi: [u32; 2] },
+    Bucket { sys: u32, bucket: u32 },
 }
 
 /// Which broad phase a contour set uses.
@@ -114,8 +130,20 @@ impl BroadPhase for Broad {
         dispatch!(self, b => b.query(bx, out))
     }
     #[inline]
+    fn query_edges(&self, bx: &Aabb, prev: &[u32], pos: &[Point], out: &mut Vec<u32>) {
+        dispatch!(self, b => b.query_edges(bx, prev, pos, out))
+    }
+    #[inline]
     fn finds(&self, v: u32, p: Point) -> bool {
         dispatch!(self, b => b.finds(v, p))
+    }
+    #[inline]
+    fn region(&self, bx: &Aabb) -> Option<(Region, u32)> {
+        dispatch!(self, b => b.region(bx))
+    }
+    #[inline]
+    fn in_region(&self, v: u32, r: &Region) -> bool {
+        dispatch!(self, b => b.in_region(v, r))
     }
     #[inline]
     fn len(&self) -> usize {

@@ -21,7 +21,7 @@ use crate::geometry::{
     folds_back, orient, segment_intersection, signed_area2, winding_number, Aabb, Point,
     SegmentIntersection,
 };
-pub use broad_phase::{Broad, BroadPhase, BroadPhaseKind};
+pub use broad_phase::{Broad, BroadPhase, BroadPhaseKind, Region};
 pub use staggered_hash::StaggeredHash;
 pub use vertex_bins::VertexBins;
 

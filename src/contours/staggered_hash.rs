@@ -19,7 +19,7 @@
 //! measured optimum), a power of two, doubled as vertices are added. Entries carry their
 //! box, so hash collisions are filtered exactly and answers never hold duplicates.
 
-use super::broad_phase::BroadPhase;
+use super::broad_phase::{BroadPhase, Region};
 use crate::geometry::{Aabb, Point};
 
 const NIL: u32 = u32::MAX;
@@ -35,6 +35,8 @@ pub struct StaggeredHash {
     bits: u32,
     /// `4 << bits` bucket heads: system s owns `[s << bits, (s + 1) << bits)`.
     head: Vec<u32>,
+    /// Nodes per bucket (the quiet-move certificate counts them, see [`Region`]).
+    fill: Vec<u32>,
     /// Per node `4 v + s`: list links, its box, and its bucket (`NIL` when absent).
     link_next: Vec<u32>,
     link_prev: Vec<u32>,
@@ -74,6 +76,7 @@ impl StaggeredHash {
             inv_l: 1.0 / l,
             bits,
             head: vec![NIL; 4 << bits],
+            fill: vec![0; 4 << bits],
             link_next: Vec::new(),
             link_prev: Vec::new(),
             cell: Vec::new(),
@@ -87,13 +90,15 @@ impl StaggeredHash {
         1 << self.bits
     }
 
+    /// The boxes of `p` in all four systems, indexed by system. One floor per axis:
+    /// with k = ⌊2x/l⌋, ⌊x/l⌋ = k >> 1 and ⌊x/l + 1/2⌋ = (k + 1) >> 1, exactly.
     #[inline]
-    fn cell_of(&self, p: Point, sys: usize) -> [i32; 2] {
-        let (ox, oy) = ((sys & 1) as f64 * 0.5, (sys >> 1) as f64 * 0.5);
-        [
-            floor_i32(p.x * self.inv_l + ox),
-            floor_i32(p.y * self.inv_l + oy),
-        ]
+    fn cells_of(&self, p: Point) -> [[i32; 2]; 4] {
+        let kx = floor_i32(2.0 * (p.x * self.inv_l));
+        let ky = floor_i32(2.0 * (p.y * self.inv_l));
+        let (x0, x1) = (kx >> 1, kx.saturating_add(1) >> 1);
+        let (y0, y1) = (ky >> 1, ky.saturating_add(1) >> 1);
+        [[x0, y0], [x1, y0], [x0, y1], [x1, y1]]
     }
 
     #[inline]
@@ -110,6 +115,7 @@ impl StaggeredHash {
             self.link_prev[h as usize] = node as u32;
         }
         self.head[b as usize] = node as u32;
+        self.fill[b as usize] += 1;
         self.cell[node] = cell;
         self.bucket[node] = b;
     }
@@ -124,6 +130,7 @@ impl StaggeredHash {
         if n != NIL {
             self.link_prev[n as usize] = p;
         }
+        self.fill[self.bucket[node] as usize] -= 1;
         self.bucket[node] = NIL;
     }
 
@@ -136,6 +143,7 @@ impl StaggeredHash {
             return;
         }
         self.head = vec![NIL; 4 << self.bits];
+        self.fill = vec![0; 4 << self.bits];
         for node in 0..self.bucket.len() {
             if self.bucket[node] != NIL {
                 let c = self.cell[node];
@@ -146,24 +154,20 @@ impl StaggeredHash {
 
     #[inline]
     fn reach(&self, b: &Aabb) -> Reach {
-        let (x0, x1) = (b.min.x * self.inv_l, b.max.x * self.inv_l);
-        let (y0, y1) = (b.min.y * self.inv_l, b.max.y * self.inv_l);
-        let pick = |lo: f64, hi: f64| -> Option<(usize, i32)> {
-            let k = floor_i32(lo);
-            if k == floor_i32(hi) {
-                return Some((0, k));
-            }
-            let k = floor_i32(lo + 0.5);
-            (k == floor_i32(hi + 0.5)).then_some((1, k))
+        let (lo, hi) = (self.cells_of(b.min), self.cells_of(b.max));
+        // Per axis, system offset 0 or 1/2 whose box holds both corners.
+        let pick = |a: usize| -> Option<usize> {
+            let sys = |o: usize| if a == 0 { o } else { o << 1 };
+            (0..2).find(|&o| lo[sys(o)][a] == hi[sys(o)][a])
         };
-        match (pick(x0, x1), pick(y0, y1)) {
-            (Some((sx, kx)), Some((sy, ky))) => Reach::One {
-                sys: sx | (sy << 1),
-                cell: [kx, ky],
-            },
+        match (pick(0), pick(1)) {
+            (Some(ox), Some(oy)) => {
+                let sys = ox | (oy << 1);
+                Reach::One { sys, cell: lo[sys] }
+            }
             _ => Reach::Range {
-                lo: [floor_i32(x0), floor_i32(y0)],
-                hi: [floor_i32(x1), floor_i32(y1)],
+                lo: lo[0],
+                hi: hi[0],
             },
         }
     }
@@ -227,8 +231,7 @@ impl BroadPhase for StaggeredHash {
             self.bucket.resize(base + 4, NIL);
         }
         debug_assert_eq!(self.bucket[base], NIL, "vertex {v} inserted twice");
-        for s in 0..4 {
-            let c = self.cell_of(p, s);
+        for (s, c) in self.cells_of(p).into_iter().enumerate() {
             self.link(base + s, c);
         }
         self.count += 1;
@@ -249,8 +252,7 @@ impl BroadPhase for StaggeredHash {
     #[inline]
     fn update(&mut self, v: u32, p: Point) {
         let base = 4 * v as usize;
-        for s in 0..4 {
-            let c = self.cell_of(p, s);
+        for (s, c) in self.cells_of(p).into_iter().enumerate() {
             if self.cell[base + s] != c {
                 self.unlink(base + s);
                 self.link(base + s, c);
@@ -267,8 +269,9 @@ impl BroadPhase for StaggeredHash {
         if base >= self.bucket.len() {
             return false;
         }
+        let cells = self.cells_of(p);
         (0..4).all(|s| {
-            let c = self.cell_of(p, s);
+            let c = cells[s];
             if self.bucket[base + s] == NIL || self.cell[base + s] != c {
                 return false;
             }
@@ -281,6 +284,28 @@ impl BroadPhase for StaggeredHash {
             }
             false
         })
+    }
+
+    fn region(&self, b: &Aabb) -> Option<(Region, u32)> {
+        match self.reach(b) {
+            Reach::One { sys, cell } => {
+                let bucket = self.bucket_of(cell, sys);
+                let r = Region::Bucket {
+                    sys: sys as u32,
+                    bucket,
+                };
+                Some((r, self.fill[bucket as usize]))
+            }
+            Reach::Range { .. } => None,
+        }
+    }
+
+    #[inline]
+    fn in_region(&self, v: u32, r: &Region) -> bool {
+        let Region::Bucket { sys, bucket } = *r else {
+            return false;
+        };
+        self.bucket[4 * v as usize + sys as usize] == bucket
     }
 
     fn len(&self) -> usize {

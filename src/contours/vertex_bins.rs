@@ -11,12 +11,14 @@
 //! vertex inside B grown by `reach`: querying that grown box and taking each found
 //! vertex's outgoing edge yields every edge that can meet B.
 
-use super::broad_phase::BroadPhase;
+use super::broad_phase::{BroadPhase, Region};
 use crate::geometry::{Aabb, Point};
 
 const NIL: u32 = u32::MAX;
 /// Upper bound on the number of cells, so a tiny edge bound on a huge image stays small.
 const MAX_CELLS: usize = 1 << 22;
+/// Largest region a quiet move certifies by counting (a small move covers 2×2 to 3×3).
+const MAX_REGION_CELLS: usize = 16;
 
 /// Uniform grid of vertex lists.
 #[derive(Clone, Debug)]
@@ -26,9 +28,12 @@ pub struct VertexBins {
     nx: usize,
     ny: usize,
     head: Vec<u32>,
+    /// Vertices per cell (the quiet-move certificate counts them, see [`Region`]).
+    fill: Vec<u32>,
     link_next: Vec<u32>,
     link_prev: Vec<u32>,
-    cell_of: Vec<u32>,
+    /// Cell column and row of each vertex (`NIL` column when absent).
+    at: Vec<[u32; 2]>,
     count: usize,
 }
 
@@ -49,9 +54,10 @@ impl VertexBins {
             nx,
             ny,
             head: vec![NIL; nx * ny],
+            fill: vec![0; nx * ny],
             link_next: Vec::new(),
             link_prev: Vec::new(),
-            cell_of: Vec::new(),
+            at: Vec::new(),
             count: 0,
         }
     }
@@ -61,73 +67,71 @@ impl VertexBins {
         1.0 / self.inv_cell
     }
 
-    // Truncation is floor for the non-negative values that reach it (and avoids a libm
-    // call on baseline x86_64).
+    // Truncation is floor for the non-negative values that reach it; the saturating cast
+    // to u32 is cheaper than one to usize (and avoids a libm call on baseline x86_64).
     #[inline]
     fn ix(&self, x: f64) -> usize {
-        let f = (x - self.origin.x) * self.inv_cell;
-        if f > 0.0 {
-            (f as usize).min(self.nx - 1)
-        } else {
-            0
-        }
+        (((x - self.origin.x) * self.inv_cell) as u32).min(self.nx as u32 - 1) as usize
     }
     #[inline]
     fn iy(&self, y: f64) -> usize {
-        let f = (y - self.origin.y) * self.inv_cell;
-        if f > 0.0 {
-            (f as usize).min(self.ny - 1)
-        } else {
-            0
-        }
+        (((y - self.origin.y) * self.inv_cell) as u32).min(self.ny as u32 - 1) as usize
     }
     #[inline]
-    fn cell(&self, p: Point) -> u32 {
-        (self.iy(p.y) * self.nx + self.ix(p.x)) as u32
+    fn cell(&self, p: Point) -> [u32; 2] {
+        [self.ix(p.x) as u32, self.iy(p.y) as u32]
     }
 
-    fn link(&mut self, v: u32, c: u32) {
-        let h = self.head[c as usize];
+    #[inline]
+    fn index(&self, c: [u32; 2]) -> usize {
+        c[1] as usize * self.nx + c[0] as usize
+    }
+
+    fn link(&mut self, v: u32, c: [u32; 2]) {
+        let i = self.index(c);
+        let h = self.head[i];
         self.link_next[v as usize] = h;
         self.link_prev[v as usize] = NIL;
         if h != NIL {
             self.link_prev[h as usize] = v;
         }
-        self.head[c as usize] = v;
-        self.cell_of[v as usize] = c;
+        self.head[i] = v;
+        self.fill[i] += 1;
+        self.at[v as usize] = c;
     }
 
     fn unlink(&mut self, v: u32) {
-        let c = self.cell_of[v as usize];
+        let i = self.index(self.at[v as usize]);
         let (n, p) = (self.link_next[v as usize], self.link_prev[v as usize]);
         if p != NIL {
             self.link_next[p as usize] = n;
         } else {
-            self.head[c as usize] = n;
+            self.head[i] = n;
         }
         if n != NIL {
             self.link_prev[n as usize] = p;
         }
-        self.cell_of[v as usize] = NIL;
+        self.fill[i] -= 1;
+        self.at[v as usize] = [NIL, NIL];
     }
 }
 
 impl BroadPhase for VertexBins {
     fn insert(&mut self, v: u32, p: Point) {
         let i = v as usize;
-        if i >= self.cell_of.len() {
-            self.cell_of.resize(i + 1, NIL);
+        if i >= self.at.len() {
+            self.at.resize(i + 1, [NIL, NIL]);
             self.link_next.resize(i + 1, NIL);
             self.link_prev.resize(i + 1, NIL);
         }
-        debug_assert_eq!(self.cell_of[i], NIL, "vertex {v} inserted twice");
+        debug_assert_eq!(self.at[i][0], NIL, "vertex {v} inserted twice");
         let c = self.cell(p);
         self.link(v, c);
         self.count += 1;
     }
 
     fn remove(&mut self, v: u32) {
-        debug_assert_ne!(self.cell_of[v as usize], NIL);
+        debug_assert_ne!(self.at[v as usize][0], NIL);
         self.unlink(v);
         self.count -= 1;
     }
@@ -135,7 +139,7 @@ impl BroadPhase for VertexBins {
     #[inline]
     fn update(&mut self, v: u32, p: Point) {
         let c = self.cell(p);
-        if self.cell_of[v as usize] != c {
+        if self.at[v as usize] != c {
             self.unlink(v);
             self.link(v, c);
         }
@@ -157,12 +161,37 @@ impl BroadPhase for VertexBins {
         }
     }
 
+    // One pass over the cells, filtering exactly as it goes (no second pass to retain).
+    fn query_edges(&self, b: &Aabb, prev: &[u32], pos: &[Point], out: &mut Vec<u32>) {
+        out.clear();
+        let (x0, x1) = (self.ix(b.min.x), self.ix(b.max.x));
+        let (y0, y1) = (self.iy(b.min.y), self.iy(b.max.y));
+        for y in y0..=y1 {
+            let row = &self.head[y * self.nx + x0..=y * self.nx + x1];
+            for &h in row {
+                let mut v = h;
+                while v != NIL {
+                    if b.contains(pos[v as usize]) {
+                        out.push(v);
+                    }
+                    v = self.link_next[v as usize];
+                }
+            }
+        }
+        for i in 0..out.len() {
+            let a = prev[out[i] as usize];
+            if !b.contains(pos[a as usize]) {
+                out.push(a);
+            }
+        }
+    }
+
     fn finds(&self, v: u32, p: Point) -> bool {
         let c = self.cell(p);
-        if self.cell_of.get(v as usize) != Some(&c) {
+        if self.at.get(v as usize) != Some(&c) {
             return false;
         }
-        let mut u = self.head[c as usize];
+        let mut u = self.head[self.index(c)];
         while u != NIL {
             if u == v {
                 return true;
@@ -170,6 +199,34 @@ impl BroadPhase for VertexBins {
             u = self.link_next[u as usize];
         }
         false
+    }
+
+    fn region(&self, b: &Aabb) -> Option<(Region, u32)> {
+        let (x0, x1) = (self.ix(b.min.x), self.ix(b.max.x));
+        let (y0, y1) = (self.iy(b.min.y), self.iy(b.max.y));
+        if (x1 - x0 + 1) * (y1 - y0 + 1) > MAX_REGION_CELLS {
+            return None;
+        }
+        let mut n = 0;
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                n += self.fill[y * self.nx + x];
+            }
+        }
+        let r = Region::Cells {
+            lo: [x0 as u32, y0 as u32],
+            hi: [x1 as u32, y1 as u32],
+        };
+        Some((r, n))
+    }
+
+    #[inline]
+    fn in_region(&self, v: u32, r: &Region) -> bool {
+        let Region::Cells { lo, hi } = *r else {
+            return false;
+        };
+        let c = self.at[v as usize];
+        c[0] >= lo[0] && c[0] <= hi[0] && c[1] >= lo[1] && c[1] <= hi[1]
     }
 
     fn len(&self) -> usize {

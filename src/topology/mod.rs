@@ -26,6 +26,7 @@ pub mod directive2;
 pub mod events;
 pub mod motion_region;
 pub mod preserve;
+mod quiet;
 
 use crate::contours::{ContourSet, Ring, VertexId, NIL};
 use crate::geometry::{folds_back, segment_intersection, Aabb, Point, SegmentIntersection};
@@ -80,7 +81,7 @@ impl ContourSet {
         if !to.is_finite() {
             return Err(MoveError::NotFinite);
         }
-        if to == self.pos[v as usize] {
+        if to == self.pos[v as usize] || self.quiet_move(v, to) {
             return Ok(Vec::new());
         }
         self.replace_vertex(v, Some(to))
