@@ -224,6 +224,7 @@ pub fn segment_intersection(a0: Point, a1: Point, b0: Point, b1: Point) -> Segme
 }
 
 /// Whether segments s0–s1 and s0–t (sharing the endpoint s0) overlap beyond s0.
+#[inline]
 pub fn folds_back(s0: Point, s1: Point, t: Point) -> bool {
     // The cheap test first (usually false); the conjunction is the same either way.
     (s1 - s0).dot(t - s0) > 0.0 && orient(s0, s1, t) == 0.0

@@ -54,7 +54,9 @@ pub trait BroadPhase {
 /// certificate of `ContourSet::move_vertex`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Region {
-    Cells { lo: [u32; 2], hi: [u32; 2] },
+    /// Cells (bins) or system-0 boxes (hash) from `lo` to `hi`, inclusive.
+    Cells { lo: [i32; 2], hi: [i32; 2] },
+    /// One bucket of one hash system.
     Bucket { sys: u32, bucket: u32 },
 }
 

@@ -367,6 +367,18 @@ impl ContourSet {
         }
         out
     }
+    /// Every live vertex, ring by ring in ring order (neighbours in space come one after
+    /// the other: what a pass over all vertices wants for its memory accesses).
+    pub fn vertices_in_ring_order(&self, out: &mut Vec<VertexId>) {
+        out.clear();
+        for r in self.rings.iter().flatten() {
+            let mut v = r.anchor;
+            for _ in 0..r.len {
+                out.push(v);
+                v = self.next[v as usize];
+            }
+        }
+    }
     /// The positions of a ring in order.
     pub fn ring_points(&self, id: ContourId) -> Vec<Point> {
         self.ring_vertices(id)

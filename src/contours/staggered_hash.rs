@@ -296,16 +296,33 @@ impl BroadPhase for StaggeredHash {
                 };
                 Some((r, self.fill[bucket as usize]))
             }
-            Reach::Range { .. } => None,
+            // A few boxes of system 0: their buckets' fills summed. Should two of them
+            // share a bucket, the sum exceeds what any walk meets and the count fails safe.
+            Reach::Range { lo, hi } => {
+                let boxes = (hi[0] as i64 - lo[0] as i64 + 1) * (hi[1] as i64 - lo[1] as i64 + 1);
+                if boxes > 4 {
+                    return None;
+                }
+                let mut n = 0;
+                for y in lo[1]..hi[1] + 1 {
+                    for x in lo[0]..hi[0] + 1 {
+                        n += self.fill[self.bucket_of([x, y], 0) as usize];
+                    }
+                }
+                Some((Region::Cells { lo, hi }, n))
+            }
         }
     }
 
     #[inline]
     fn in_region(&self, v: u32, r: &Region) -> bool {
-        let Region::Bucket { sys, bucket } = *r else {
-            return false;
-        };
-        self.bucket[4 * v as usize + sys as usize] == bucket
+        match *r {
+            Region::Bucket { sys, bucket } => self.bucket[4 * v as usize + sys as usize] == bucket,
+            Region::Cells { lo, hi } => {
+                let c = self.cell[4 * v as usize];
+                c[0] >= lo[0] && c[0] <= hi[0] && c[1] >= lo[1] && c[1] <= hi[1]
+            }
+        }
     }
 
     fn len(&self) -> usize {

@@ -204,18 +204,21 @@ impl BroadPhase for VertexBins {
     fn region(&self, b: &Aabb) -> Option<(Region, u32)> {
         let (x0, x1) = (self.ix(b.min.x), self.ix(b.max.x));
         let (y0, y1) = (self.iy(b.min.y), self.iy(b.max.y));
-        if (x1 - x0 + 1) * (y1 - y0 + 1) > MAX_REGION_CELLS {
+        let (w, h) = (x1 - x0 + 1, y1 - y0 + 1);
+        if w * h > MAX_REGION_CELLS {
             return None;
         }
         let mut n = 0;
-        for y in y0..=y1 {
-            for x in x0..=x1 {
-                n += self.fill[y * self.nx + x];
+        let mut row = y0 * self.nx + x0;
+        for _ in 0..h {
+            for &f in &self.fill[row..row + w] {
+                n += f;
             }
+            row += self.nx;
         }
         let r = Region::Cells {
-            lo: [x0 as u32, y0 as u32],
-            hi: [x1 as u32, y1 as u32],
+            lo: [x0 as i32, y0 as i32],
+            hi: [x1 as i32, y1 as i32],
         };
         Some((r, n))
     }
@@ -225,7 +228,7 @@ impl BroadPhase for VertexBins {
         let Region::Cells { lo, hi } = *r else {
             return false;
         };
-        let c = self.at[v as usize];
+        let c = self.at[v as usize].map(|k| k as i32);
         c[0] >= lo[0] && c[0] <= hi[0] && c[1] >= lo[1] && c[1] <= hi[1]
     }
 

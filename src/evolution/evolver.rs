@@ -343,7 +343,8 @@ impl Evolver {
         let mut events = Vec::new();
         let mut motions = Vec::new();
         let (mut moved_sum, mut energy, mut active, mut visited) = (0.0, 0.0, 0usize, 0usize);
-        let order: Vec<u32> = self.set.vertices().collect();
+        let mut order = Vec::with_capacity(self.set.vertex_count());
+        self.set.vertices_in_ring_order(&mut order);
         if self.still.len() < self.set.vertex_capacity() {
             self.still.resize(self.set.vertex_capacity(), 0);
         }

@@ -72,42 +72,32 @@ impl Field {
     }
 
     /// Separable blur with an odd symmetric kernel, clamped borders.
-    pub fn blur(&self, k: &[f32]) -> Field {
-        let r = k.len() / 2;
+    pub fn blur<const N: usize>(&self, k: &[f32; N]) -> Field {
+        let r = N / 2;
         let (w, h) = (self.width, self.height);
+        // Each pass adds whole shifted rows times one weight: loops the compiler
+        // vectorises (one tap at a time, in kernel order, as a scalar sum would).
         let mut tmp = vec![0f32; w * h];
+        let mut padded = vec![0f32; w + 2 * r];
         for y in 0..h {
             let row = &self.data[y * w..(y + 1) * w];
+            padded[r..r + w].copy_from_slice(row);
+            for i in 0..r {
+                padded[i] = row[0];
+                padded[r + w + i] = row[w - 1];
+            }
             let dst = &mut tmp[y * w..(y + 1) * w];
-            let clamped = |x: usize| -> f32 {
-                let mut s = 0.0;
-                for (i, &kv) in k.iter().enumerate() {
-                    let xi = (x as isize + i as isize - r as isize).clamp(0, w as isize - 1);
-                    s += kv * row[xi as usize];
+            for (i, &kv) in k.iter().enumerate() {
+                for (d, &v) in dst.iter_mut().zip(&padded[i..i + w]) {
+                    *d += kv * v;
                 }
-                s
-            };
-            if w <= 2 * r {
-                for (x, d) in dst.iter_mut().enumerate() {
-                    *d = clamped(x);
-                }
-                continue;
-            }
-            // Interior without clamps (the hot loop), borders with them.
-            for x in 0..r {
-                dst[x] = clamped(x);
-                dst[w - 1 - x] = clamped(w - 1 - x);
-            }
-            for (x, d) in dst.iter_mut().enumerate().take(w - r).skip(r) {
-                let win = &row[x - r..=x + r];
-                *d = win.iter().zip(k).map(|(&v, &kv)| v * kv).sum();
             }
         }
         let mut out = vec![0f32; w * h];
         for y in 0..h {
             let dst = &mut out[y * w..(y + 1) * w];
             for (i, &kv) in k.iter().enumerate() {
-                let yi = (y as isize + i as isize - r as isize).clamp(0, h as isize - 1) as usize;
+                let yi = (y + i).saturating_sub(r).min(h - 1);
                 let src = &tmp[yi * w..(yi + 1) * w];
                 for (d, &v) in dst.iter_mut().zip(src) {
                     *d += kv * v;
@@ -118,12 +108,13 @@ impl Field {
     }
 }
 
-/// One pyramid level with its gradient fields, computed once and stored per pixel as
-/// one texel (intensity, ∂x, ∂y, |∇|), so a force evaluation costs a few bilinear fetches.
+/// One pyramid level. A sample is the bilinear blend of four texels (intensity, ∂x, ∂y,
+/// |∇|) computed from the pixels around it on the fly: storing texels would take four
+/// times the image's memory (a quarter of a gigabyte for a 4096² image), and writing it
+/// costs more than the few samples an evolution takes where its contours pass.
 #[derive(Clone, Debug)]
 pub struct Level {
     pub image: Field,
-    texels: Vec<[f32; 4]>,
 }
 
 /// What [`Level::sample`] returns at a point.
@@ -136,23 +127,7 @@ pub struct Texel {
 
 impl Level {
     pub fn new(image: Field) -> Self {
-        let (w, h) = (image.width, image.height);
-        let mut texels = Vec::with_capacity(w * h);
-        for y in 0..h {
-            let (up, down) = (y.saturating_sub(1), (y + 1).min(h - 1));
-            let (row, r_up, r_down) = (
-                &image.data[y * w..(y + 1) * w],
-                &image.data[up * w..(up + 1) * w],
-                &image.data[down * w..(down + 1) * w],
-            );
-            for x in 0..w {
-                // Central differences, one-sided at the border.
-                let dx = 0.5 * (row[(x + 1).min(w - 1)] - row[x.saturating_sub(1)]);
-                let dy = 0.5 * (r_down[x] - r_up[x]);
-                texels.push([row[x], dx, dy, (dx * dx + dy * dy).sqrt()]);
-            }
-        }
-        Level { texels, image }
+        Level { image }
     }
 
     /// Bilinear texel at `p` (pixel-centre convention, clamped at the borders).
@@ -172,7 +147,18 @@ impl Level {
         self.bilinear(p)[3]
     }
 
-    #[inline]
+    /// The texel of pixel (x, y): central differences, one-sided at the border.
+    #[inline(always)]
+    fn texel(&self, x: usize, y: usize) -> [f32; 4] {
+        let (w, h) = (self.image.width, self.image.height);
+        let d = &self.image.data;
+        let row = y * w;
+        let dx = 0.5 * (d[row + (x + 1).min(w - 1)] - d[row + x.saturating_sub(1)]);
+        let dy = 0.5 * (d[(y + 1).min(h - 1) * w + x] - d[y.saturating_sub(1) * w + x]);
+        [d[row + x], dx, dy, (dx * dx + dy * dy).sqrt()]
+    }
+
+    #[inline(always)]
     fn bilinear(&self, p: Point) -> [f64; 4] {
         let (w, h) = (self.image.width, self.image.height);
         let fx = (p.x - 0.5).clamp(0.0, (w - 1) as f64);
@@ -181,8 +167,8 @@ impl Level {
         let (x1, y1) = ((x0 + 1).min(w - 1), (y0 + 1).min(h - 1));
         // Weights in f32, like the texels: four lanes at once.
         let (tx, ty) = ((fx - x0 as f64) as f32, (fy - y0 as f64) as f32);
-        let (a, b) = (self.texels[y0 * w + x0], self.texels[y0 * w + x1]);
-        let (c, d) = (self.texels[y1 * w + x0], self.texels[y1 * w + x1]);
+        let (a, b) = (self.texel(x0, y0), self.texel(x1, y0));
+        let (c, d) = (self.texel(x0, y1), self.texel(x1, y1));
         let mut out = [0.0; 4];
         for k in 0..4 {
             let top = a[k] + (b[k] - a[k]) * tx;
