@@ -4,14 +4,19 @@
 //! filled regions) through the headless egui harness — which builds every shape but does
 //! not rasterise them (the GPU does that in the real window).
 //!
-//! `cargo run --release --example app_frame_time`
+//! `cargo run --release --example app_frame_time [SIDE]`: SIDE (default 1600, 400 cells,
+//! about 31,000 vertices) sets the image side; 1280 gives 256 cells, about 20,000 vertices.
 
 use egui_kittest::Harness;
 use std::time::Instant;
 use topocontour::app::{Command, TopoApp};
 
 fn main() {
-    let (w, h) = (1600u32, 1600u32);
+    let side: u32 = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(1600);
+    let (w, h) = (side, side);
     let mut img = image::GrayImage::new(w, h);
     for (x, y, p) in img.enumerate_pixels_mut() {
         let (cx, cy) = ((x % 80) as f64 - 40.0 + 0.5, (y % 80) as f64 - 40.0 + 0.5);
@@ -29,16 +34,19 @@ fn main() {
         .with_size(egui::vec2(1400.0, 900.0))
         .build_ui_state(|ui, app: &mut TopoApp| app.ui(ui), app);
     harness.step();
-    // Evolve until the contours are at full resolution with at least 20,000 vertices.
+    // Evolve until the contours are at full resolution (at least 1/2 vertex per pixel of
+    // perimeter: 50 per cell and more).
+    let cells = (side / 80) as usize * (side / 80) as usize;
+    let wanted = 50 * cells;
     while harness
         .state()
         .shown_record()
-        .is_none_or(|r| r.vertices < 20_000)
+        .is_none_or(|r| r.vertices < wanted)
     {
         harness.state_mut().send(Command::Step(1));
         harness.step();
         if harness.state().shown_record().unwrap().index > 3000 {
-            panic!("never reached 20,000 vertices");
+            panic!("never reached {wanted} vertices");
         }
     }
     let r = harness.state().shown_record().unwrap();
