@@ -27,13 +27,7 @@ pub trait BroadPhase {
     fn query_edges(&self, b: &Aabb, prev: &[u32], pos: &[Point], out: &mut Vec<u32>) {
         self.query(b, out);
         out.retain(|&v| b.contains(pos[v as usize]));
-        let found = out.len();
-        for i in 0..found {
-            let a = prev[out[i] as usize];
-            if !b.contains(pos[a as usize]) {
-                out.push(a);
-            }
-        }
+        push_outside_prevs(b, prev, pos, out);
     }
     /// The part of the broad phase a query for `b` would read, with the number of
     /// vertices registered in it; `None` when that part is too large to count cheaply.
@@ -44,6 +38,18 @@ pub trait BroadPhase {
     fn len(&self) -> usize;
     fn is_empty(&self) -> bool {
         self.len() == 0
+    }
+}
+
+/// Appends the predecessor of each vertex in `out` (all lying in `b`) that lies outside
+/// `b`: with them, `out` starts every edge with an endpoint in `b`, each once.
+#[inline]
+pub(crate) fn push_outside_prevs(b: &Aabb, prev: &[u32], pos: &[Point], out: &mut Vec<u32>) {
+    for i in 0..out.len() {
+        let a = prev[out[i] as usize];
+        if !b.contains(pos[a as usize]) {
+            out.push(a);
+        }
     }
 }
 

@@ -11,10 +11,11 @@
 //! vertex inside B grown by `reach`: querying that grown box and taking each found
 //! vertex's outgoing edge yields every edge that can meet B.
 
-use super::broad_phase::{BroadPhase, Region};
+use super::broad_phase::{push_outside_prevs, BroadPhase, Region};
 use crate::geometry::{Aabb, Point};
 
 const NIL: u32 = u32::MAX;
+const ABSENT: [i32; 2] = [-1, -1];
 /// Upper bound on the number of cells, so a tiny edge bound on a huge image stays small.
 const MAX_CELLS: usize = 1 << 22;
 /// Largest region a quiet move certifies by counting (a small move covers 2×2 to 3×3).
@@ -32,8 +33,8 @@ pub struct VertexBins {
     fill: Vec<u32>,
     link_next: Vec<u32>,
     link_prev: Vec<u32>,
-    /// Cell column and row of each vertex (`NIL` column when absent).
-    at: Vec<[u32; 2]>,
+    /// Cell column and row of each vertex (`ABSENT` when not registered).
+    at: Vec<[i32; 2]>,
     count: usize,
 }
 
@@ -78,16 +79,40 @@ impl VertexBins {
         (((y - self.origin.y) * self.inv_cell) as u32).min(self.ny as u32 - 1) as usize
     }
     #[inline]
-    fn cell(&self, p: Point) -> [u32; 2] {
-        [self.ix(p.x) as u32, self.iy(p.y) as u32]
+    fn cell(&self, p: Point) -> [i32; 2] {
+        [self.ix(p.x) as i32, self.iy(p.y) as i32]
     }
 
     #[inline]
-    fn index(&self, c: [u32; 2]) -> usize {
+    fn index(&self, c: [i32; 2]) -> usize {
         c[1] as usize * self.nx + c[0] as usize
     }
 
-    fn link(&mut self, v: u32, c: [u32; 2]) {
+    /// The cells a box overlaps: columns `x0..=x1`, rows `y0..=y1`.
+    #[inline]
+    fn span(&self, b: &Aabb) -> ([usize; 2], [usize; 2]) {
+        (
+            [self.ix(b.min.x), self.iy(b.min.y)],
+            [self.ix(b.max.x), self.iy(b.max.y)],
+        )
+    }
+
+    /// Calls `f` with every vertex registered in a cell that `b` overlaps.
+    #[inline]
+    fn for_each_near(&self, b: &Aabb, mut f: impl FnMut(u32)) {
+        let (lo, hi) = self.span(b);
+        for y in lo[1]..=hi[1] {
+            for &h in &self.head[y * self.nx + lo[0]..=y * self.nx + hi[0]] {
+                let mut v = h;
+                while v != NIL {
+                    f(v);
+                    v = self.link_next[v as usize];
+                }
+            }
+        }
+    }
+
+    fn link(&mut self, v: u32, c: [i32; 2]) {
         let i = self.index(c);
         let h = self.head[i];
         self.link_next[v as usize] = h;
@@ -112,7 +137,7 @@ impl VertexBins {
             self.link_prev[n as usize] = p;
         }
         self.fill[i] -= 1;
-        self.at[v as usize] = [NIL, NIL];
+        self.at[v as usize] = ABSENT;
     }
 }
 
@@ -120,18 +145,18 @@ impl BroadPhase for VertexBins {
     fn insert(&mut self, v: u32, p: Point) {
         let i = v as usize;
         if i >= self.at.len() {
-            self.at.resize(i + 1, [NIL, NIL]);
+            self.at.resize(i + 1, ABSENT);
             self.link_next.resize(i + 1, NIL);
             self.link_prev.resize(i + 1, NIL);
         }
-        debug_assert_eq!(self.at[i][0], NIL, "vertex {v} inserted twice");
+        debug_assert_eq!(self.at[i], ABSENT, "vertex {v} inserted twice");
         let c = self.cell(p);
         self.link(v, c);
         self.count += 1;
     }
 
     fn remove(&mut self, v: u32) {
-        debug_assert_ne!(self.at[v as usize][0], NIL);
+        debug_assert_ne!(self.at[v as usize], ABSENT);
         self.unlink(v);
         self.count -= 1;
     }
@@ -147,43 +172,18 @@ impl BroadPhase for VertexBins {
 
     fn query(&self, b: &Aabb, out: &mut Vec<u32>) {
         out.clear();
-        let (x0, x1) = (self.ix(b.min.x), self.ix(b.max.x));
-        let (y0, y1) = (self.iy(b.min.y), self.iy(b.max.y));
-        for y in y0..=y1 {
-            let row = y * self.nx;
-            for x in x0..=x1 {
-                let mut v = self.head[row + x];
-                while v != NIL {
-                    out.push(v);
-                    v = self.link_next[v as usize];
-                }
-            }
-        }
+        self.for_each_near(b, |v| out.push(v));
     }
 
     // One pass over the cells, filtering exactly as it goes (no second pass to retain).
     fn query_edges(&self, b: &Aabb, prev: &[u32], pos: &[Point], out: &mut Vec<u32>) {
         out.clear();
-        let (x0, x1) = (self.ix(b.min.x), self.ix(b.max.x));
-        let (y0, y1) = (self.iy(b.min.y), self.iy(b.max.y));
-        for y in y0..=y1 {
-            let row = &self.head[y * self.nx + x0..=y * self.nx + x1];
-            for &h in row {
-                let mut v = h;
-                while v != NIL {
-                    if b.contains(pos[v as usize]) {
-                        out.push(v);
-                    }
-                    v = self.link_next[v as usize];
-                }
+        self.for_each_near(b, |v| {
+            if b.contains(pos[v as usize]) {
+                out.push(v);
             }
-        }
-        for i in 0..out.len() {
-            let a = prev[out[i] as usize];
-            if !b.contains(pos[a as usize]) {
-                out.push(a);
-            }
-        }
+        });
+        push_outside_prevs(b, prev, pos, out);
     }
 
     fn finds(&self, v: u32, p: Point) -> bool {
@@ -202,14 +202,13 @@ impl BroadPhase for VertexBins {
     }
 
     fn region(&self, b: &Aabb) -> Option<(Region, u32)> {
-        let (x0, x1) = (self.ix(b.min.x), self.ix(b.max.x));
-        let (y0, y1) = (self.iy(b.min.y), self.iy(b.max.y));
-        let (w, h) = (x1 - x0 + 1, y1 - y0 + 1);
+        let (lo, hi) = self.span(b);
+        let (w, h) = (hi[0] - lo[0] + 1, hi[1] - lo[1] + 1);
         if w * h > MAX_REGION_CELLS {
             return None;
         }
         let mut n = 0;
-        let mut row = y0 * self.nx + x0;
+        let mut row = lo[1] * self.nx + lo[0];
         for _ in 0..h {
             for &f in &self.fill[row..row + w] {
                 n += f;
@@ -217,8 +216,8 @@ impl BroadPhase for VertexBins {
             row += self.nx;
         }
         let r = Region::Cells {
-            lo: [x0 as i32, y0 as i32],
-            hi: [x1 as i32, y1 as i32],
+            lo: lo.map(|k| k as i32),
+            hi: hi.map(|k| k as i32),
         };
         Some((r, n))
     }
@@ -228,7 +227,7 @@ impl BroadPhase for VertexBins {
         let Region::Cells { lo, hi } = *r else {
             return false;
         };
-        let c = self.at[v as usize].map(|k| k as i32);
+        let c = self.at[v as usize];
         c[0] >= lo[0] && c[0] <= hi[0] && c[1] >= lo[1] && c[1] <= hi[1]
     }
 

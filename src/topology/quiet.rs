@@ -62,9 +62,10 @@ impl ContourSet {
         let Some((region, held)) = self.bins.region(&b) else {
             return false;
         };
-        // o, p and n lie in B, hence in R.
+        // o, p and n lie in B, hence in R. Walk on from the vertices beyond p and n.
+        let (c2, d2) = (self.prev[pid as usize], self.next[nid as usize]);
         let mut met = 3;
-        let mut back = self.prev[pid as usize];
+        let mut back = c2;
         while self.bins.in_region(back, &region) {
             if back == nid || met > MAX_WALK {
                 return false;
@@ -72,7 +73,7 @@ impl ContourSet {
             met += 1;
             back = self.prev[back as usize];
         }
-        let mut fwd = self.next[nid as usize];
+        let mut fwd = d2;
         while self.bins.in_region(fwd, &region) {
             if met > 2 * MAX_WALK {
                 return false;
@@ -86,7 +87,6 @@ impl ContourSet {
         // The chain's edges from `back` to p, then from n to `fwd`. The two that share p or
         // n with c' must not fold onto it there, nor meet its other edge; the others must
         // not meet c' at all.
-        let (c2, d2) = (self.prev[pid as usize], self.next[nid as usize]);
         let (pc, pd) = (self.pos[c2 as usize], self.pos[d2 as usize]);
         let clear = |c0: Point, c1: Point, e0: Point, e1: Point| {
             segment_intersection(c0, c1, e0, e1) == SegmentIntersection::None
@@ -98,36 +98,38 @@ impl ContourSet {
         {
             return false;
         }
-        let (lo, hi) = (path.min, path.max);
-        let edge_clear = |a: u32, b: u32| {
-            let (pa, pb) = (self.pos[a as usize], self.pos[b as usize]);
-            // Most chain edges are nowhere near c': one box test clears both new edges.
-            fmax(pa.x, pb.x) < lo.x
-                || fmin(pa.x, pb.x) > hi.x
-                || fmax(pa.y, pb.y) < lo.y
-                || fmin(pa.y, pb.y) > hi.y
-                || (clear(p, q, pa, pb) && clear(q, n, pa, pb))
-        };
-        let mut a = back;
-        while a != c2 {
-            let an = self.next[a as usize];
-            if !edge_clear(a, an) {
-                return false;
-            }
-            a = an;
-        }
-        let mut a = d2;
-        while a != fwd {
-            let an = self.next[a as usize];
-            if !edge_clear(a, an) {
-                return false;
-            }
-            a = an;
+        let c = [p, q, n];
+        if !self.chain_clear(back, c2, c, &path) || !self.chain_clear(d2, fwd, c, &path) {
+            return false;
         }
         let r = self.ring_mut(label);
         r.area2 += p.cross(q) + q.cross(n) - p.cross(o) - o.cross(n);
         self.pos[v as usize] = q;
         self.bins.update(v, q);
+        true
+    }
+
+    /// Whether every edge of the chain from `from` to `to` stays clear of c' = [p, q, n]
+    /// (`path`: its box).
+    #[inline(always)]
+    fn chain_clear(&self, from: u32, to: u32, [p, q, n]: [Point; 3], path: &Aabb) -> bool {
+        let mut a = from;
+        while a != to {
+            let an = self.next[a as usize];
+            let (pa, pb) = (self.pos[a as usize], self.pos[an as usize]);
+            // Most chain edges are nowhere near c': one box test clears both new edges.
+            let far = fmax(pa.x, pb.x) < path.min.x
+                || fmin(pa.x, pb.x) > path.max.x
+                || fmax(pa.y, pb.y) < path.min.y
+                || fmin(pa.y, pb.y) > path.max.y;
+            if !far
+                && (segment_intersection(p, q, pa, pb) != SegmentIntersection::None
+                    || segment_intersection(q, n, pa, pb) != SegmentIntersection::None)
+            {
+                return false;
+            }
+            a = an;
+        }
         true
     }
 }
