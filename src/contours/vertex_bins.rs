@@ -18,8 +18,9 @@ const NIL: u32 = u32::MAX;
 const ABSENT: [i32; 2] = [-1, -1];
 /// Upper bound on the number of cells, so a tiny edge bound on a huge image stays small.
 const MAX_CELLS: usize = 1 << 22;
-/// Largest region a quiet move certifies by counting (a small move covers 2×2 to 3×3).
-const MAX_REGION_CELLS: usize = 16;
+/// Widest region, in cells per axis, a quiet move certifies by counting (a small move
+/// covers 2 to 3); `fill` has this many spare entries minus one so a row reads whole.
+const REGION_SIDE: usize = 4;
 
 /// Uniform grid of vertex lists.
 #[derive(Clone, Debug)]
@@ -55,7 +56,7 @@ impl VertexBins {
             nx,
             ny,
             head: vec![NIL; nx * ny],
-            fill: vec![0; nx * ny],
+            fill: vec![0; nx * ny + REGION_SIDE - 1],
             link_next: Vec::new(),
             link_prev: Vec::new(),
             at: Vec::new(),
@@ -204,14 +205,18 @@ impl BroadPhase for VertexBins {
     fn region(&self, b: &Aabb) -> Option<(Region, u32)> {
         let (lo, hi) = self.span(b);
         let (w, h) = (hi[0] - lo[0] + 1, hi[1] - lo[1] + 1);
-        if w * h > MAX_REGION_CELLS {
+        if w > REGION_SIDE || h > REGION_SIDE {
             return None;
         }
-        let mut n = 0;
+        // Every row read as four cells, those beyond the region masked out: a fixed width
+        // the compiler turns into one vector load per row.
+        let mask: [u32; REGION_SIDE] = std::array::from_fn(|i| if i < w { !0 } else { 0 });
+        let mut sum = [0u32; REGION_SIDE];
         let mut row = lo[1] * self.nx + lo[0];
         for _ in 0..h {
-            for &f in &self.fill[row..row + w] {
-                n += f;
+            let f: &[u32; REGION_SIDE] = self.fill[row..row + REGION_SIDE].try_into().unwrap();
+            for i in 0..REGION_SIDE {
+                sum[i] += f[i] & mask[i];
             }
             row += self.nx;
         }
@@ -219,7 +224,7 @@ impl BroadPhase for VertexBins {
             lo: lo.map(|k| k as i32),
             hi: hi.map(|k| k as i32),
         };
-        Some((r, n))
+        Some((r, sum.iter().sum()))
     }
 
     #[inline]

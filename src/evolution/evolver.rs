@@ -519,19 +519,15 @@ impl Evolver {
         self.level_frames = 0;
         self.areas.clear();
         let scale = Pyramid::scale(level);
-        self.set
-            .set_max_edge(2.0 * std::f64::consts::SQRT_2 * scale);
+        let d_max = 2.0 * std::f64::consts::SQRT_2 * scale;
         self.still.iter_mut().for_each(|s| *s = 0);
-        // Global refinement on a level change (seed 004).
+        // Global refinement on a level change (seed 004), then the tighter edge bound: set
+        // before the split, the bound would keep the coarse edges' length as its reach
+        // (and the broad phase its coarse cells) for the whole level.
         let mut events = Vec::new();
         let gap = (self.params.mode == Mode::Preserve).then_some(PRESERVE_GAP * scale);
-        remesh(
-            &mut self.set,
-            scale,
-            2.0 * std::f64::consts::SQRT_2 * scale,
-            gap,
-            &mut events,
-        );
+        remesh(&mut self.set, scale, d_max, gap, &mut events);
+        self.set.set_max_edge(d_max);
         for e in events {
             self.events.push(FrameEvent {
                 frame: self.frame,
