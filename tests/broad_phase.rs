@@ -6,13 +6,16 @@
 //!   force.
 //! - Edge queries on ring sets: the edges offered near a box, cut to the edges that meet
 //!   it, are the same for both and equal brute force.
+//! - Counted regions (the quiet-move certificate): a region covers every vertex lying in
+//!   its box, its exact count equals brute force (hash collisions included), and the fast
+//!   count is never less.
 //! - Whole motions: the same random moves run on a bins set and a hash set give the same
 //!   rings and the same events, move after move.
 
 use proptest::prelude::*;
 use std::collections::BTreeSet;
 use topocontour::check::{draw_target, random_rings_in, segment_meets_box, snapshot, MoveMix, Rng};
-use topocontour::contours::{BroadPhase, BroadPhaseKind, StaggeredHash, VertexBins};
+use topocontour::contours::{BroadPhase, BroadPhaseKind, Countable, StaggeredHash, VertexBins};
 use topocontour::{Aabb, Point};
 
 fn domain() -> Aabb {
@@ -58,6 +61,39 @@ fn canonical(set: &topocontour::ContourSet) -> Vec<Vec<(f64, f64)>> {
         .collect();
     rings.sort_by(|a, b| a.partial_cmp(b).unwrap());
     rings
+}
+
+/// Checks the region counted for box `bx` against brute force over the live vertices.
+fn check_region<B: Countable>(
+    name: &str,
+    b: &B,
+    bx: &Aabb,
+    pos: &[Option<Point>],
+) -> Result<(), TestCaseError> {
+    let Some((r, held)) = b.region(bx) else {
+        return Ok(());
+    };
+    let mut inside = 0;
+    for (v, p) in pos.iter().enumerate() {
+        let Some(p) = p else { continue };
+        let registered = b.in_region(v as u32, &r);
+        prop_assert!(
+            registered || !in_box(bx, *p),
+            "{}: vertex {} in the box, not in its region",
+            name,
+            v
+        );
+        inside += registered as u32;
+    }
+    prop_assert_eq!(b.exact_count(&r), inside, "{}: exact count", name);
+    prop_assert!(
+        held >= inside,
+        "{}: fast count {} below {}",
+        name,
+        held,
+        inside
+    );
+    Ok(())
 }
 
 /// Events in a fixed order (candidates arrive in a broad-phase-specific order).
@@ -106,6 +142,8 @@ proptest! {
                 }
             }
             let bx = random_box(&mut rng);
+            check_region("bins", &bins, &bx, &pos)?;
+            check_region("hash", &hash, &bx, &pos)?;
             bins.query(&bx, &mut a);
             hash.query(&bx, &mut b);
             let brute: BTreeSet<u32> = pos.iter().enumerate()

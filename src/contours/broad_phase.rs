@@ -29,11 +29,6 @@ pub trait BroadPhase {
         out.retain(|&v| b.contains(pos[v as usize]));
         push_outside_prevs(b, prev, pos, out);
     }
-    /// The part of the broad phase a query for `b` would read, with the number of
-    /// vertices registered in it; `None` when that part is too large to count cheaply.
-    fn region(&self, b: &Aabb) -> Option<(Region, u32)>;
-    /// Whether vertex `v` is registered in region `r` (counted by [`BroadPhase::region`]).
-    fn in_region(&self, v: u32, r: &Region) -> bool;
     /// Number of registered vertices.
     fn len(&self) -> usize;
     fn is_empty(&self) -> bool {
@@ -53,17 +48,20 @@ pub(crate) fn push_outside_prevs(b: &Aabb, prev: &[u32], pos: &[Point], out: &mu
     }
 }
 
-/// A countable part of a broad phase that holds every vertex lying in some box: a
-/// rectangle of bins, or one bucket of one hash system. Every vertex lying in the box is
-/// registered in the region, so if a walk along the rings meets as many registered
-/// vertices as the region holds, nothing else lies in the box (the quiet-move
-/// certificate of `ContourSet::move_vertex`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Region {
-    /// Cells (bins) or system-0 boxes (hash) from `lo` to `hi`, inclusive.
-    Cells { lo: [i32; 2], hi: [i32; 2] },
-    /// One bucket of one hash system.
-    Bucket { sys: u32, bucket: u32 },
+/// A broad phase whose parts can be counted: the quiet-move certificate of
+/// `ContourSet::move_vertex`. A region is a part that holds every vertex lying in some box
+/// (a rectangle of bins, one bucket of one hash system); if a walk along the rings meets
+/// as many vertices registered in the region as it holds, nothing else lies in the box.
+pub trait Countable: BroadPhase {
+    type Region: Copy;
+    /// The part of the broad phase a query for `b` would read, with the number of
+    /// vertices registered in it; `None` when that part is too large to count cheaply.
+    fn region(&self, b: &Aabb) -> Option<(Self::Region, u32)>;
+    /// Whether vertex `v` is registered in region `r`.
+    fn in_region(&self, v: u32, r: &Self::Region) -> bool;
+    /// The vertices registered in `r`, counted one by one where [`Countable::region`]'s
+    /// count may include others (hash collisions).
+    fn exact_count(&self, r: &Self::Region) -> u32;
 }
 
 /// Which broad phase a contour set uses.
@@ -144,14 +142,6 @@ impl BroadPhase for Broad {
     #[inline]
     fn finds(&self, v: u32, p: Point) -> bool {
         dispatch!(self, b => b.finds(v, p))
-    }
-    #[inline]
-    fn region(&self, bx: &Aabb) -> Option<(Region, u32)> {
-        dispatch!(self, b => b.region(bx))
-    }
-    #[inline]
-    fn in_region(&self, v: u32, r: &Region) -> bool {
-        dispatch!(self, b => b.in_region(v, r))
     }
     #[inline]
     fn len(&self) -> usize {

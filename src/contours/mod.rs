@@ -21,7 +21,7 @@ use crate::geometry::{
     folds_back, orient, segment_intersection, signed_area2, winding_number, Aabb, Point,
     SegmentIntersection,
 };
-pub use broad_phase::{Broad, BroadPhase, BroadPhaseKind, Region};
+pub use broad_phase::{Broad, BroadPhase, BroadPhaseKind, Countable};
 pub use staggered_hash::StaggeredHash;
 pub use vertex_bins::VertexBins;
 
@@ -291,9 +291,11 @@ impl ContourSet {
         self.free.push(v);
     }
 
+    #[inline]
     pub(crate) fn ring(&self, id: u32) -> &Ring {
         self.rings[id as usize].as_ref().expect("live ring")
     }
+    #[inline]
     pub(crate) fn ring_mut(&mut self, id: u32) -> &mut Ring {
         self.rings[id as usize].as_mut().expect("live ring")
     }

@@ -19,7 +19,7 @@
 //! measured optimum), a power of two, doubled as vertices are added. Entries carry their
 //! box, so hash collisions are filtered exactly and answers never hold duplicates.
 
-use super::broad_phase::{BroadPhase, Region};
+use super::broad_phase::{BroadPhase, Countable};
 use crate::geometry::{Aabb, Point};
 
 const NIL: u32 = u32::MAX;
@@ -35,13 +35,15 @@ pub struct StaggeredHash {
     bits: u32,
     /// `4 << bits` bucket heads: system s owns `[s << bits, (s + 1) << bits)`.
     head: Vec<u32>,
-    /// Nodes per bucket (the quiet-move certificate counts them, see [`Region`]).
+    /// Nodes per bucket (the quiet-move certificate counts them, see [`Countable`]).
     fill: Vec<u32>,
     /// Per node `4 v + s`: list links, its box, and its bucket (`NIL` when absent).
     link_next: Vec<u32>,
     link_prev: Vec<u32>,
     cell: Vec<[i32; 2]>,
     bucket: Vec<u32>,
+    /// Per vertex: its half-box (which fixes its four boxes).
+    half: Vec<[i32; 2]>,
     count: usize,
 }
 
@@ -57,6 +59,15 @@ fn floor_i32(f: f64) -> i32 {
     // Saturating cast, then floor for negatives (no libm call on baseline x86_64).
     let t = f as i32;
     t - ((t as f64) > f) as i32
+}
+
+/// The boxes of half-box `k` in the four systems: with k = ⌊2x/l⌋, ⌊x/l⌋ = k >> 1 and
+/// ⌊x/l + 1/2⌋ = (k + 1) >> 1, exactly.
+#[inline]
+fn cells_at([kx, ky]: [i32; 2]) -> [[i32; 2]; 4] {
+    let (x0, x1) = (kx >> 1, kx.saturating_add(1) >> 1);
+    let (y0, y1) = (ky >> 1, ky.saturating_add(1) >> 1);
+    [[x0, y0], [x1, y0], [x0, y1], [x1, y1]]
 }
 
 #[inline]
@@ -81,6 +92,7 @@ impl StaggeredHash {
             link_prev: Vec::new(),
             cell: Vec::new(),
             bucket: Vec::new(),
+            half: Vec::new(),
             count: 0,
         }
     }
@@ -90,15 +102,20 @@ impl StaggeredHash {
         1 << self.bits
     }
 
-    /// The boxes of `p` in all four systems, indexed by system. One floor per axis:
-    /// with k = ⌊2x/l⌋, ⌊x/l⌋ = k >> 1 and ⌊x/l + 1/2⌋ = (k + 1) >> 1, exactly.
+    /// The half-box of `p`: k = (⌊2x/l⌋, ⌊2y/l⌋). It fixes the boxes of all four systems
+    /// ([`cells_at`]), so a vertex whose half-box stays put keeps its boxes.
+    #[inline]
+    fn half_box(&self, p: Point) -> [i32; 2] {
+        [
+            floor_i32(2.0 * (p.x * self.inv_l)),
+            floor_i32(2.0 * (p.y * self.inv_l)),
+        ]
+    }
+
+    /// The boxes of `p` in all four systems, indexed by system.
     #[inline]
     fn cells_of(&self, p: Point) -> [[i32; 2]; 4] {
-        let kx = floor_i32(2.0 * (p.x * self.inv_l));
-        let ky = floor_i32(2.0 * (p.y * self.inv_l));
-        let (x0, x1) = (kx >> 1, kx.saturating_add(1) >> 1);
-        let (y0, y1) = (ky >> 1, ky.saturating_add(1) >> 1);
-        [[x0, y0], [x1, y0], [x0, y1], [x1, y1]]
+        cells_at(self.half_box(p))
     }
 
     #[inline]
@@ -154,21 +171,21 @@ impl StaggeredHash {
 
     #[inline]
     fn reach(&self, b: &Aabb) -> Reach {
-        let (lo, hi) = (self.cells_of(b.min), self.cells_of(b.max));
-        // Per axis, system offset 0 or 1/2 whose box holds both corners.
-        let pick = |a: usize| -> Option<usize> {
-            let sys = |o: usize| if a == 0 { o } else { o << 1 };
-            (0..2).find(|&o| lo[sys(o)][a] == hi[sys(o)][a])
-        };
-        match (pick(0), pick(1)) {
-            (Some(ox), Some(oy)) => {
-                let sys = ox | (oy << 1);
-                Reach::One { sys, cell: lo[sys] }
-            }
-            _ => Reach::Range {
-                lo: lo[0],
-                hi: hi[0],
-            },
+        let (lo, hi) = (self.half_box(b.min), self.half_box(b.max));
+        // Per axis: corners in one half-box share the box of either system; in adjacent
+        // half-boxes k and k + 1, that of the system whose boxes start at k (k even:
+        // offset 0, k odd: offset 1/2); further apart, none.
+        let span = [hi[0] as i64 - lo[0] as i64, hi[1] as i64 - lo[1] as i64];
+        if span[0] > 1 || span[1] > 1 {
+            return Reach::Range {
+                lo: [lo[0] >> 1, lo[1] >> 1],
+                hi: [hi[0] >> 1, hi[1] >> 1],
+            };
+        }
+        let (ox, oy) = (span[0] as i32 & lo[0] & 1, span[1] as i32 & lo[1] & 1);
+        Reach::One {
+            sys: (ox | (oy << 1)) as usize,
+            cell: [(lo[0] + ox) >> 1, (lo[1] + oy) >> 1],
         }
     }
 
@@ -229,9 +246,12 @@ impl BroadPhase for StaggeredHash {
             self.link_prev.resize(base + 4, NIL);
             self.cell.resize(base + 4, [0, 0]);
             self.bucket.resize(base + 4, NIL);
+            self.half.resize(v as usize + 1, [0, 0]);
         }
         debug_assert_eq!(self.bucket[base], NIL, "vertex {v} inserted twice");
-        for (s, c) in self.cells_of(p).into_iter().enumerate() {
+        let k = self.half_box(p);
+        self.half[v as usize] = k;
+        for (s, c) in cells_at(k).into_iter().enumerate() {
             self.link(base + s, c);
         }
         self.count += 1;
@@ -251,8 +271,13 @@ impl BroadPhase for StaggeredHash {
 
     #[inline]
     fn update(&mut self, v: u32, p: Point) {
+        let k = self.half_box(p);
+        if self.half[v as usize] == k {
+            return; // the common small move: same half-box, same four boxes
+        }
+        self.half[v as usize] = k;
         let base = 4 * v as usize;
-        for (s, c) in self.cells_of(p).into_iter().enumerate() {
+        for (s, c) in cells_at(k).into_iter().enumerate() {
             if self.cell[base + s] != c {
                 self.unlink(base + s);
                 self.link(base + s, c);
@@ -286,13 +311,38 @@ impl BroadPhase for StaggeredHash {
         })
     }
 
-    fn region(&self, b: &Aabb) -> Option<(Region, u32)> {
+    fn len(&self) -> usize {
+        self.count
+    }
+}
+
+/// What the quiet-move certificate counts: one bucket of one system, or system-0 boxes
+/// from `lo` to `hi` inclusive.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HashRegion {
+    /// Box `cell` of system `sys`, stored in `bucket` (its count includes collisions).
+    Bucket {
+        sys: u32,
+        bucket: u32,
+        cell: [i32; 2],
+    },
+    Boxes {
+        lo: [i32; 2],
+        hi: [i32; 2],
+    },
+}
+
+impl Countable for StaggeredHash {
+    type Region = HashRegion;
+
+    fn region(&self, b: &Aabb) -> Option<(HashRegion, u32)> {
         match self.reach(b) {
             Reach::One { sys, cell } => {
                 let bucket = self.bucket_of(cell, sys);
-                let r = Region::Bucket {
+                let r = HashRegion::Bucket {
                     sys: sys as u32,
                     bucket,
+                    cell,
                 };
                 Some((r, self.fill[bucket as usize]))
             }
@@ -309,24 +359,46 @@ impl BroadPhase for StaggeredHash {
                         n += self.fill[self.bucket_of([x, y], 0) as usize];
                     }
                 }
-                Some((Region::Cells { lo, hi }, n))
+                Some((HashRegion::Boxes { lo, hi }, n))
             }
         }
     }
 
-    #[inline]
-    fn in_region(&self, v: u32, r: &Region) -> bool {
+    fn exact_count(&self, r: &HashRegion) -> u32 {
+        let mut n = 0;
+        let mut count = |sys: usize, cell: [i32; 2]| {
+            let mut node = self.head[self.bucket_of(cell, sys) as usize];
+            while node != NIL {
+                let i = node as usize;
+                n += (i & 3 == sys && self.cell[i] == cell) as u32;
+                node = self.link_next[i];
+            }
+        };
         match *r {
-            Region::Bucket { sys, bucket } => self.bucket[4 * v as usize + sys as usize] == bucket,
-            Region::Cells { lo, hi } => {
+            HashRegion::Bucket { sys, cell, .. } => count(sys as usize, cell),
+            HashRegion::Boxes { lo, hi } => {
+                for y in lo[1]..=hi[1] {
+                    for x in lo[0]..=hi[0] {
+                        count(0, [x, y]);
+                    }
+                }
+            }
+        }
+        n
+    }
+
+    #[inline]
+    fn in_region(&self, v: u32, r: &HashRegion) -> bool {
+        match *r {
+            // The box, not the bucket: a walk must not count another box hashed alike.
+            HashRegion::Bucket { sys, cell, .. } => {
+                self.cell[4 * v as usize + sys as usize] == cell
+            }
+            HashRegion::Boxes { lo, hi } => {
                 let c = self.cell[4 * v as usize];
                 c[0] >= lo[0] && c[0] <= hi[0] && c[1] >= lo[1] && c[1] <= hi[1]
             }
         }
-    }
-
-    fn len(&self) -> usize {
-        self.count
     }
 }
 

@@ -11,7 +11,7 @@
 //! vertex inside B grown by `reach`: querying that grown box and taking each found
 //! vertex's outgoing edge yields every edge that can meet B.
 
-use super::broad_phase::{push_outside_prevs, BroadPhase, Region};
+use super::broad_phase::{push_outside_prevs, BroadPhase, Countable};
 use crate::geometry::{Aabb, Point};
 
 const NIL: u32 = u32::MAX;
@@ -19,7 +19,8 @@ const ABSENT: [i32; 2] = [-1, -1];
 /// Upper bound on the number of cells, so a tiny edge bound on a huge image stays small.
 const MAX_CELLS: usize = 1 << 22;
 /// Widest region, in cells per axis, a quiet move certifies by counting (a small move
-/// covers 2 to 3); `fill` has this many spare entries minus one so a row reads whole.
+/// covers 2 to 3). `fill` has that many spare rows and columns, so a region's count
+/// always reads a whole square of cells.
 const REGION_SIDE: usize = 4;
 
 /// Uniform grid of vertex lists.
@@ -30,7 +31,7 @@ pub struct VertexBins {
     nx: usize,
     ny: usize,
     head: Vec<u32>,
-    /// Vertices per cell (the quiet-move certificate counts them, see [`Region`]).
+    /// Vertices per cell (the quiet-move certificate counts them, see [`Countable`]).
     fill: Vec<u32>,
     link_next: Vec<u32>,
     link_prev: Vec<u32>,
@@ -56,7 +57,7 @@ impl VertexBins {
             nx,
             ny,
             head: vec![NIL; nx * ny],
-            fill: vec![0; nx * ny + REGION_SIDE - 1],
+            fill: vec![0; (nx + REGION_SIDE) * (ny + REGION_SIDE)],
             link_next: Vec::new(),
             link_prev: Vec::new(),
             at: Vec::new(),
@@ -202,42 +203,64 @@ impl BroadPhase for VertexBins {
         false
     }
 
-    fn region(&self, b: &Aabb) -> Option<(Region, u32)> {
+    fn len(&self) -> usize {
+        self.count
+    }
+}
+
+/// A rectangle of cells: columns `lo[0] ..= lo[0] + size[0]`, rows likewise.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CellRect {
+    lo: [i32; 2],
+    size: [u32; 2],
+}
+
+impl Countable for VertexBins {
+    type Region = CellRect;
+
+    fn region(&self, b: &Aabb) -> Option<(CellRect, u32)> {
         let (lo, hi) = self.span(b);
         let (w, h) = (hi[0] - lo[0] + 1, hi[1] - lo[1] + 1);
         if w > REGION_SIDE || h > REGION_SIDE {
             return None;
         }
-        // Every row read as four cells, those beyond the region masked out: a fixed width
-        // the compiler turns into one vector load per row.
-        let mask: [u32; REGION_SIDE] = std::array::from_fn(|i| if i < w { !0 } else { 0 });
+        // A fixed 4×4 square of cells, those outside the region masked out arithmetically:
+        // no branch on the region's size, and a vector load per row.
+        let keep = |i: usize, n: usize| ((i as i32 - n as i32) >> 31) as u32;
+        let cols: [u32; REGION_SIDE] = std::array::from_fn(|i| keep(i, w));
+        let start = lo[1] * self.nx + lo[0];
+        let square = &self.fill[start..start + (REGION_SIDE - 1) * self.nx + REGION_SIDE];
         let mut sum = [0u32; REGION_SIDE];
-        let mut row = lo[1] * self.nx + lo[0];
-        for _ in 0..h {
-            let f: &[u32; REGION_SIDE] = self.fill[row..row + REGION_SIDE].try_into().unwrap();
+        for r in 0..REGION_SIDE {
+            let row: &[u32; REGION_SIDE] = square[r * self.nx..][..REGION_SIDE].try_into().unwrap();
+            let m = keep(r, h);
             for i in 0..REGION_SIDE {
-                sum[i] += f[i] & mask[i];
+                sum[i] += row[i] & cols[i] & m;
             }
-            row += self.nx;
         }
-        let r = Region::Cells {
+        let r = CellRect {
             lo: lo.map(|k| k as i32),
-            hi: hi.map(|k| k as i32),
+            size: [w as u32 - 1, h as u32 - 1],
         };
         Some((r, sum.iter().sum()))
     }
 
-    #[inline]
-    fn in_region(&self, v: u32, r: &Region) -> bool {
-        let Region::Cells { lo, hi } = *r else {
-            return false;
-        };
-        let c = self.at[v as usize];
-        c[0] >= lo[0] && c[0] <= hi[0] && c[1] >= lo[1] && c[1] <= hi[1]
+    fn exact_count(&self, r: &CellRect) -> u32 {
+        let mut n = 0;
+        for y in r.lo[1]..=r.lo[1] + r.size[1] as i32 {
+            for x in r.lo[0]..=r.lo[0] + r.size[0] as i32 {
+                n += self.fill[self.index([x, y])];
+            }
+        }
+        n
     }
 
-    fn len(&self) -> usize {
-        self.count
+    #[inline]
+    fn in_region(&self, v: u32, r: &CellRect) -> bool {
+        // Unsigned offsets: one comparison per axis.
+        let c = self.at[v as usize];
+        (c[0].wrapping_sub(r.lo[0]) as u32) <= r.size[0]
+            && (c[1].wrapping_sub(r.lo[1]) as u32) <= r.size[1]
     }
 }
 

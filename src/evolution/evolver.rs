@@ -9,9 +9,10 @@
 //! three frames — or, when noise keeps vertices chattering while the area stays put, after
 //! 40 frames (on a coarse level the finer one will settle them).
 //!
-//! Choices: vertices that stayed still for a while are only revisited every fourth frame
-//! unless a neighbour moves, so a long growth along a spiral costs what its tip costs; a
-//! refused (degenerate) move is retried once at half length, then the vertex waits for
+//! Choices: vertices that stayed still for a while are only revisited every eighth frame
+//! unless a neighbour moves (the image does not change, so a still vertex among still
+//! neighbours feels the same forces), so a long growth along a spiral costs what its tip
+//! costs; a refused (degenerate) move is retried once at half length, then the vertex waits for
 //! the next frame.
 
 use super::field::{Field, Pyramid};
@@ -25,6 +26,8 @@ use crate::topology::{MoveError, TopologyEvent};
 
 /// Frames one pyramid level may take before the next finer level takes over.
 const LEVEL_FRAMES_CAP: usize = 600;
+/// Frames after which a level whose area is steady ends even if vertices still chatter.
+const STALL_FRAMES: usize = 40;
 
 /// How topology may change.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -348,7 +351,7 @@ impl Evolver {
         if self.still.len() < self.set.vertex_capacity() {
             self.still.resize(self.set.vertex_capacity(), 0);
         }
-        let revisit_all = self.frame % 4 == 0;
+        let revisit_all = self.frame % 8 == 0;
         let preserve = self.params.mode == Mode::Preserve;
         let gap = PRESERVE_GAP * scale;
         let mut near = Vec::new();
@@ -464,7 +467,8 @@ impl Evolver {
         let quiet = share < self.params.converged_share && steady(0.002);
         self.calm = if quiet { self.calm + 1 } else { 0 };
         // Contours chattering in noise without going anywhere: refine, or stop.
-        let stalled = self.level_frames >= 40 && steady(if self.level > 0 { 0.01 } else { 0.003 });
+        let stalled =
+            self.level_frames >= STALL_FRAMES && steady(if self.level > 0 { 0.01 } else { 0.003 });
         if self.calm >= 3
             || stalled
             || self.level_frames >= LEVEL_FRAMES_CAP

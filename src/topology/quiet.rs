@@ -8,7 +8,9 @@
 //!
 //! The certificate: let B be the box of p, o, q and n grown by half the edge reach, and
 //! R the part of the broad phase that a query for B reads (a rectangle of bins, or one
-//! hash bucket, [`Region`](crate::contours::Region)), holding `k` registered vertices.
+//! box of one hash system, [`Countable`]), holding `k` registered vertices (a per-cell or
+//! per-bucket counter gives k at once; a hash bucket's counter may include other boxes
+//! hashed to it, and then the bucket's list is counted box by box before giving up).
 //! Walking from o backwards through p and forwards through n while the vertices are
 //! registered in R, we meet some of them. If we meet all `k`, every vertex lying in B is
 //! on the walked chain, so every edge with an endpoint in B is a chain edge (or one of the
@@ -21,7 +23,7 @@
 //! chain n → … → p reaches a vertex outside R (outside B, outside M̄) without crossing
 //! ∂M, so it lies outside M.
 
-use crate::contours::{BroadPhase, ContourSet};
+use crate::contours::{Broad, BroadPhase, ContourSet, Countable};
 use crate::geometry::SegmentIntersection;
 use crate::geometry::{fmax, fmin, folds_back, segment_intersection, Aabb, Point};
 
@@ -34,10 +36,28 @@ impl ContourSet {
     /// Moves `v` (at o, between p and n) to `q` if the move is certified quiet: no
     /// crossing, no ring in M, no edge over the bound. Returns whether it moved.
     pub(crate) fn quiet_move(&mut self, v: u32, q: Point) -> bool {
-        let (pid, nid) = (self.prev[v as usize], self.next[v as usize]);
-        let label = self.label[v as usize];
-        if self.ring(label).len < MIN_RING {
+        // One dispatch, then a walk specialised to the broad phase.
+        let delta2 = match &self.bins {
+            Broad::Bins(b) => self.certify(b, v, q),
+            Broad::Hash(h) => self.certify(h, v, q),
+        };
+        let Some(delta2) = delta2 else {
             return false;
+        };
+        let label = self.label[v as usize];
+        self.ring_mut(label).area2 += delta2;
+        self.pos[v as usize] = q;
+        self.bins.update(v, q);
+        true
+    }
+
+    /// The certificate of the module doc for moving `v` to `q`: `Some` (twice the change
+    /// of its ring's area) when the move is quiet, `None` when the general path decides.
+    #[inline(always)]
+    fn certify<B: Countable>(&self, bins: &B, v: u32, q: Point) -> Option<f64> {
+        let (pid, nid) = (self.prev[v as usize], self.next[v as usize]);
+        if self.ring(self.label[v as usize]).len < MIN_RING {
+            return None;
         }
         let (p, o, n) = (
             self.pos[pid as usize],
@@ -51,7 +71,7 @@ impl ContourSet {
             || (q - p).norm2() > bound2
             || (n - q).norm2() > bound2
         {
-            return false;
+            return None;
         }
         let path = Aabb::of(&[p, q, n]);
         let b = Aabb {
@@ -59,78 +79,65 @@ impl ContourSet {
             max: Point::new(fmax(path.max.x, o.x), fmax(path.max.y, o.y)),
         }
         .expand(0.5 * self.reach);
-        let Some((region, held)) = self.bins.region(&b) else {
-            return false;
+        let (region, held) = bins.region(&b)?;
+        // The chain's edges other than the two at p and n must not meet c' = [p, q, n].
+        // Most are nowhere near it: one box test clears both new edges.
+        let clear = |a: Point, b: Point| {
+            let far = fmax(a.x, b.x) < path.min.x
+                || fmin(a.x, b.x) > path.max.x
+                || fmax(a.y, b.y) < path.min.y
+                || fmin(a.y, b.y) > path.max.y;
+            far || (segment_intersection(p, q, a, b) == SegmentIntersection::None
+                && segment_intersection(q, n, a, b) == SegmentIntersection::None)
         };
-        // o, p and n lie in B, hence in R. Walk on from the vertices beyond p and n.
+        // o, p and n lie in B, hence in R. Walk on from the vertices beyond p and n,
+        // testing each walked vertex's edge away from p (or n) on the way.
         let (c2, d2) = (self.prev[pid as usize], self.next[nid as usize]);
-        let mut met = 3;
-        let mut back = c2;
-        while self.bins.in_region(back, &region) {
-            if back == nid || met > MAX_WALK {
-                return false;
-            }
-            met += 1;
-            back = self.prev[back as usize];
-        }
-        let mut fwd = d2;
-        while self.bins.in_region(fwd, &region) {
-            if met > 2 * MAX_WALK {
-                return false;
-            }
-            met += 1;
-            fwd = self.next[fwd as usize];
-        }
-        if met != held {
-            return false;
-        }
-        // The chain's edges from `back` to p, then from n to `fwd`. The two that share p or
-        // n with c' must not fold onto it there, nor meet its other edge; the others must
-        // not meet c' at all.
         let (pc, pd) = (self.pos[c2 as usize], self.pos[d2 as usize]);
-        let clear = |c0: Point, c1: Point, e0: Point, e1: Point| {
+        let mut met = 3;
+        let (mut w, mut pw) = (c2, pc);
+        while bins.in_region(w, &region) {
+            if w == nid || met > MAX_WALK {
+                return None;
+            }
+            met += 1;
+            let u = self.prev[w as usize];
+            let pu = self.pos[u as usize];
+            if !clear(pu, pw) {
+                return None;
+            }
+            (w, pw) = (u, pu);
+        }
+        let (mut w, mut pw) = (d2, pd);
+        while bins.in_region(w, &region) {
+            if met > 2 * MAX_WALK {
+                return None;
+            }
+            met += 1;
+            let u = self.next[w as usize];
+            let pu = self.pos[u as usize];
+            if !clear(pw, pu) {
+                return None;
+            }
+            (w, pw) = (u, pu);
+        }
+        // A hash bucket's count includes other boxes hashed to it: count exactly then.
+        if met != held && met != bins.exact_count(&region) {
+            return None;
+        }
+        // The two chain edges that share p or n with c' must not fold onto it there, nor
+        // meet its other edge.
+        let apart = |c0: Point, c1: Point, e0: Point, e1: Point| {
             segment_intersection(c0, c1, e0, e1) == SegmentIntersection::None
         };
         if folds_back(p, q, pc)
             || folds_back(n, q, pd)
-            || !clear(q, n, pc, p)
-            || !clear(p, q, n, pd)
+            || !apart(q, n, pc, p)
+            || !apart(p, q, n, pd)
         {
-            return false;
+            return None;
         }
-        let c = [p, q, n];
-        if !self.chain_clear(back, c2, c, &path) || !self.chain_clear(d2, fwd, c, &path) {
-            return false;
-        }
-        let r = self.ring_mut(label);
-        r.area2 += p.cross(q) + q.cross(n) - p.cross(o) - o.cross(n);
-        self.pos[v as usize] = q;
-        self.bins.update(v, q);
-        true
-    }
-
-    /// Whether every edge of the chain from `from` to `to` stays clear of c' = [p, q, n]
-    /// (`path`: its box).
-    #[inline(always)]
-    fn chain_clear(&self, from: u32, to: u32, [p, q, n]: [Point; 3], path: &Aabb) -> bool {
-        let mut a = from;
-        while a != to {
-            let an = self.next[a as usize];
-            let (pa, pb) = (self.pos[a as usize], self.pos[an as usize]);
-            // Most chain edges are nowhere near c': one box test clears both new edges.
-            let far = fmax(pa.x, pb.x) < path.min.x
-                || fmin(pa.x, pb.x) > path.max.x
-                || fmax(pa.y, pb.y) < path.min.y
-                || fmin(pa.y, pb.y) > path.max.y;
-            if !far
-                && (segment_intersection(p, q, pa, pb) != SegmentIntersection::None
-                    || segment_intersection(q, n, pa, pb) != SegmentIntersection::None)
-            {
-                return false;
-            }
-            a = an;
-        }
-        true
+        Some(p.cross(q) + q.cross(n) - p.cross(o) - o.cross(n))
     }
 }
 
