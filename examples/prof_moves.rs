@@ -1,5 +1,6 @@
-//! Profiling aid for `move_vertex`: `prof_moves [bins|hash] [MOVES]` runs the benchmark's
-//! jitter-and-return moves on 10⁴ vertices (for `valgrind --tool=callgrind`).
+//! Profiling aid for `move_vertex`: `prof_moves [bins|hash] [MOVES] [RINGS]` runs the
+//! benchmark's jitter-and-return moves on RINGS rings of 100 vertices (default 100) (for
+//! `valgrind --tool=callgrind`).
 use topocontour::check::{ring_grid, Rng};
 use topocontour::contours::BroadPhaseKind;
 use topocontour::Point;
@@ -11,7 +12,8 @@ fn main() {
         _ => BroadPhaseKind::Bins,
     };
     let moves: usize = a.get(2).and_then(|s| s.parse().ok()).unwrap_or(1_000_000);
-    let mut set = ring_grid(100, kind);
+    let rings: usize = a.get(3).and_then(|s| s.parse().ok()).unwrap_or(100);
+    let mut set = ring_grid(rings, kind);
     let mut rng = Rng(7);
     let verts: Vec<u32> = set.vertices().collect();
     let home: Vec<Point> = verts.iter().map(|&v| set.position(v)).collect();

@@ -316,20 +316,23 @@ impl BroadPhase for StaggeredHash {
     }
 }
 
-/// What the quiet-move certificate counts: one bucket of one system, or system-0 boxes
-/// from `lo` to `hi` inclusive.
+/// What the quiet-move certificate counts: one box of one system, or system-0 boxes.
+/// Either is a rectangle of half-boxes, which is what a walk tests (one comparison per
+/// axis on the vertex's half-box, no look at its four boxes).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum HashRegion {
-    /// Box `cell` of system `sys`, stored in `bucket` (its count includes collisions).
-    Bucket {
-        sys: u32,
-        bucket: u32,
-        cell: [i32; 2],
-    },
-    Boxes {
-        lo: [i32; 2],
-        hi: [i32; 2],
-    },
+pub struct HashRegion {
+    boxes: Boxes,
+    /// Half-boxes `lo ..= lo + size` per axis (wide: 2c − o may leave i32's range).
+    lo: [i64; 2],
+    size: [u64; 2],
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Boxes {
+    /// Box `cell` of system `sys`.
+    One { sys: usize, cell: [i32; 2] },
+    /// System-0 boxes from `lo` to `hi` inclusive.
+    Range { lo: [i32; 2], hi: [i32; 2] },
 }
 
 impl Countable for StaggeredHash {
@@ -338,16 +341,17 @@ impl Countable for StaggeredHash {
     fn region(&self, b: &Aabb) -> Option<(HashRegion, u32)> {
         match self.reach(b) {
             Reach::One { sys, cell } => {
-                let bucket = self.bucket_of(cell, sys);
-                let r = HashRegion::Bucket {
-                    sys: sys as u32,
-                    bucket,
-                    cell,
+                // Box c of the system with offset o holds half-boxes 2c − o and 2c − o + 1.
+                let o = [(sys & 1) as i64, (sys >> 1) as i64];
+                let r = HashRegion {
+                    boxes: Boxes::One { sys, cell },
+                    lo: [2 * cell[0] as i64 - o[0], 2 * cell[1] as i64 - o[1]],
+                    size: [1, 1],
                 };
-                Some((r, self.fill[bucket as usize]))
+                Some((r, self.fill[self.bucket_of(cell, sys) as usize]))
             }
-            // A few boxes of system 0: their buckets' fills summed. Should two of them
-            // share a bucket, the sum exceeds what any walk meets and the count fails safe.
+            // A few boxes of system 0: their buckets' fills summed (a bucket shared by two
+            // of them counted twice: the sum only grows, and the exact count decides).
             Reach::Range { lo, hi } => {
                 let boxes = (hi[0] as i64 - lo[0] as i64 + 1) * (hi[1] as i64 - lo[1] as i64 + 1);
                 if boxes > 4 {
@@ -359,7 +363,15 @@ impl Countable for StaggeredHash {
                         n += self.fill[self.bucket_of([x, y], 0) as usize];
                     }
                 }
-                Some((HashRegion::Boxes { lo, hi }, n))
+                let r = HashRegion {
+                    boxes: Boxes::Range { lo, hi },
+                    lo: [2 * lo[0] as i64, 2 * lo[1] as i64],
+                    size: [
+                        (2 * (hi[0] as i64 - lo[0] as i64) + 1) as u64,
+                        (2 * (hi[1] as i64 - lo[1] as i64) + 1) as u64,
+                    ],
+                };
+                Some((r, n))
             }
         }
     }
@@ -374,9 +386,9 @@ impl Countable for StaggeredHash {
                 node = self.link_next[i];
             }
         };
-        match *r {
-            HashRegion::Bucket { sys, cell, .. } => count(sys as usize, cell),
-            HashRegion::Boxes { lo, hi } => {
+        match r.boxes {
+            Boxes::One { sys, cell } => count(sys, cell),
+            Boxes::Range { lo, hi } => {
                 for y in lo[1]..=hi[1] {
                     for x in lo[0]..=hi[0] {
                         count(0, [x, y]);
@@ -389,16 +401,10 @@ impl Countable for StaggeredHash {
 
     #[inline]
     fn in_region(&self, v: u32, r: &HashRegion) -> bool {
-        match *r {
-            // The box, not the bucket: a walk must not count another box hashed alike.
-            HashRegion::Bucket { sys, cell, .. } => {
-                self.cell[4 * v as usize + sys as usize] == cell
-            }
-            HashRegion::Boxes { lo, hi } => {
-                let c = self.cell[4 * v as usize];
-                c[0] >= lo[0] && c[0] <= hi[0] && c[1] >= lo[1] && c[1] <= hi[1]
-            }
-        }
+        // The box, not the bucket: a walk must not count another box hashed alike.
+        let k = self.half[v as usize];
+        ((k[0] as i64).wrapping_sub(r.lo[0]) as u64) <= r.size[0]
+            && ((k[1] as i64).wrapping_sub(r.lo[1]) as u64) <= r.size[1]
     }
 }
 
