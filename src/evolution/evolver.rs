@@ -12,8 +12,12 @@
 //! Choices: vertices that stayed still for a while are only revisited every eighth frame
 //! unless a neighbour moves (the image does not change, so a still vertex among still
 //! neighbours feels the same forces), so a long growth along a spiral costs what its tip
-//! costs; a refused (degenerate) move is retried once at half length, then the vertex waits for
-//! the next frame.
+//! costs; a vertex whose image force turned round since its last move takes half the step
+//! it took (down to an eighth; the step grows back while the force keeps its sign), so it
+//! settles on an edge instead of jumping across it frame after frame (phase-contrast
+//! halos made whole levels chatter until the stall rule ended them); a refused
+//! (degenerate) move is retried once at half length, then the vertex waits for the next
+//! frame.
 
 use super::field::{Field, Pyramid};
 use super::forces::{normal_speed, ForceWeights, IntensityModel, Polarity};
@@ -26,6 +30,8 @@ use crate::topology::{MoveError, TopologyEvent};
 
 /// Frames one pyramid level may take before the next finer level takes over.
 const LEVEL_FRAMES_CAP: usize = 600;
+/// Smallest share of the step a vertex whose force keeps turning round still takes.
+const MIN_GAIN: f32 = 0.125;
 /// Frames after which a level whose area is steady ends even if vertices still chatter.
 const STALL_FRAMES: usize = 40;
 
@@ -160,6 +166,11 @@ pub struct Evolver {
     converged: bool,
     /// Per vertex id: frames since it last moved noticeably (saturating).
     still: Vec<u8>,
+    /// Per vertex: the sign of the image force last time, and the share of the step it
+    /// takes now (halved each time the force turns round, so a vertex settles on an edge
+    /// instead of jumping across it).
+    last_sign: Vec<i8>,
+    gain: Vec<f32>,
     events: Vec<FrameEvent>,
     width: usize,
     height: usize,
@@ -225,6 +236,8 @@ impl Evolver {
             areas: Vec::new(),
             converged: false,
             still: Vec::new(),
+            last_sign: Vec::new(),
+            gain: Vec::new(),
             events: Vec::new(),
             width: image.width,
             height: image.height,
@@ -350,6 +363,8 @@ impl Evolver {
         self.set.vertices_in_ring_order(&mut order);
         if self.still.len() < self.set.vertex_capacity() {
             self.still.resize(self.set.vertex_capacity(), 0);
+            self.last_sign.resize(self.set.vertex_capacity(), 0);
+            self.gain.resize(self.set.vertex_capacity(), 1.0);
         }
         let revisit_all = self.frame % 8 == 0;
         let preserve = self.params.mode == Mode::Preserve;
@@ -378,7 +393,16 @@ impl Evolver {
             let lap_p = (self.set.position(self.set.prev(p)) + x) * 0.5 - pp;
             let lap_n = (x + self.set.position(self.set.next(n))) * 0.5 - pn;
             let bend = lap - (lap_p + lap_n) * 0.5;
-            let mut d = normal * (f.speed * max_step) + lap * w.stretch + bend * w.bend;
+            let sign = if f.speed > 0.0 { 1 } else { -1 };
+            let vi = v as usize;
+            self.gain[vi] = if sign == -self.last_sign[vi] {
+                (self.gain[vi] * 0.5).max(MIN_GAIN)
+            } else {
+                (self.gain[vi] * 1.5).min(1.0)
+            };
+            self.last_sign[vi] = sign;
+            let push = f.speed * max_step * self.gain[vi] as f64;
+            let mut d = normal * push + lap * w.stretch + bend * w.bend;
             if preserve {
                 d = d + repulsion(&self.set, v, 1.5 * scale, &mut near) * max_step;
             }
@@ -525,6 +549,8 @@ impl Evolver {
         let scale = Pyramid::scale(level);
         let d_max = 2.0 * std::f64::consts::SQRT_2 * scale;
         self.still.iter_mut().for_each(|s| *s = 0);
+        self.last_sign.iter_mut().for_each(|s| *s = 0);
+        self.gain.iter_mut().for_each(|g| *g = 1.0);
         // Global refinement on a level change (seed 004), then the tighter edge bound: set
         // before the split, the bound would keep the coarse edges' length as its reach
         // (and the broad phase its coarse cells) for the whole level.
