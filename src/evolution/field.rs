@@ -47,51 +47,62 @@ impl Field {
     }
 
     /// One pyramid step: blur with 1/16 [1 4 6 4 1] in x and y, keep every other pixel.
+    /// The coarse pixel covers fine pixels 2x, 2x+1 (and rows 2y, 2y+1): it is the average
+    /// of their blur. Blur and average are both separable, so each axis is blurred and
+    /// averaged in turn, and only the rows the average needs are blurred vertically.
     pub fn reduce(&self) -> Field {
-        let blurred = self.blur5();
-        let (w, h) = (self.width.div_ceil(2), self.height.div_ceil(2));
-        let mut data = Vec::with_capacity(w * h);
+        let (w, h) = (self.width, self.height);
+        let (w2, h2) = (w.div_ceil(2), h.div_ceil(2));
+        let pair = |i: usize, n: usize| (2 * i, (2 * i + 1).min(n - 1));
+        let mut tmp = vec![0f32; w2 * h];
+        let mut row = vec![0f32; w];
+        let mut padded = vec![0f32; w + 4];
         for y in 0..h {
-            for x in 0..w {
-                // The coarse pixel covers fine pixels 2x, 2x+1: average the pair's blur.
-                let (x0, y0) = (2 * x, 2 * y);
-                let (x1, y1) = ((x0 + 1).min(self.width - 1), (y0 + 1).min(self.height - 1));
-                let v = blurred.at(x0, y0)
-                    + blurred.at(x1, y0)
-                    + blurred.at(x0, y1)
-                    + blurred.at(x1, y1);
-                data.push(0.25 * v);
+            blur_row(
+                &self.data[y * w..(y + 1) * w],
+                &BINOMIAL5,
+                &mut padded,
+                &mut row,
+            );
+            for (x, t) in tmp[y * w2..(y + 1) * w2].iter_mut().enumerate() {
+                let (x0, x1) = pair(x, w);
+                *t = 0.5 * (row[x0] + row[x1]);
             }
         }
-        Field::new(w, h, data)
+        let mut data = vec![0f32; w2 * h2];
+        let mut lines = [vec![0f32; w2], vec![0f32; w2]];
+        for y in 0..h2 {
+            let (y0, y1) = pair(y, h);
+            for (line, yk) in lines.iter_mut().zip([y0, y1]) {
+                line.fill(0.0);
+                for (i, &kv) in BINOMIAL5.iter().enumerate() {
+                    let yi = (yk + i).saturating_sub(2).min(h - 1);
+                    for (d, &v) in line.iter_mut().zip(&tmp[yi * w2..(yi + 1) * w2]) {
+                        *d += kv * v;
+                    }
+                }
+            }
+            for (x, d) in data[y * w2..(y + 1) * w2].iter_mut().enumerate() {
+                *d = 0.5 * (lines[0][x] + lines[1][x]);
+            }
+        }
+        Field::new(w2, h2, data)
     }
 
     /// Separable 1/16 [1 4 6 4 1] blur with clamped borders.
     pub fn blur5(&self) -> Field {
-        self.blur(&[1.0 / 16.0, 4.0 / 16.0, 6.0 / 16.0, 4.0 / 16.0, 1.0 / 16.0])
+        self.blur(&BINOMIAL5)
     }
 
     /// Separable blur with an odd symmetric kernel, clamped borders.
     pub fn blur<const N: usize>(&self, k: &[f32; N]) -> Field {
         let r = N / 2;
         let (w, h) = (self.width, self.height);
-        // Each pass adds whole shifted rows times one weight: loops the compiler
-        // vectorises (one tap at a time, in kernel order, as a scalar sum would).
         let mut tmp = vec![0f32; w * h];
         let mut padded = vec![0f32; w + 2 * r];
         for y in 0..h {
-            let row = &self.data[y * w..(y + 1) * w];
-            padded[r..r + w].copy_from_slice(row);
-            for i in 0..r {
-                padded[i] = row[0];
-                padded[r + w + i] = row[w - 1];
-            }
-            let dst = &mut tmp[y * w..(y + 1) * w];
-            for (i, &kv) in k.iter().enumerate() {
-                for (d, &v) in dst.iter_mut().zip(&padded[i..i + w]) {
-                    *d += kv * v;
-                }
-            }
+            let (src, dst) = (&self.data[y * w..(y + 1) * w], &mut tmp[y * w..(y + 1) * w]);
+            blur_row(src, k, &mut padded, dst);
         }
         let mut out = vec![0f32; w * h];
         for y in 0..h {
@@ -105,6 +116,27 @@ impl Field {
             }
         }
         Field::new(w, h, out)
+    }
+}
+
+/// The pyramid's kernel, 1/16 [1 4 6 4 1].
+const BINOMIAL5: [f32; 5] = [1.0 / 16.0, 4.0 / 16.0, 6.0 / 16.0, 4.0 / 16.0, 1.0 / 16.0];
+
+/// Blurs one row with kernel `k`, the border value continuing (`padded`: scratch of
+/// `row.len() + N - 1`). Adds whole shifted rows times one weight: loops the compiler
+/// vectorises (one tap at a time, in kernel order, as a scalar sum would).
+fn blur_row<const N: usize>(row: &[f32], k: &[f32; N], padded: &mut [f32], out: &mut [f32]) {
+    let (r, w) = (N / 2, row.len());
+    padded[r..r + w].copy_from_slice(row);
+    for i in 0..r {
+        padded[i] = row[0];
+        padded[r + w + i] = row[w - 1];
+    }
+    out.fill(0.0);
+    for (i, &kv) in k.iter().enumerate() {
+        for (d, &v) in out.iter_mut().zip(&padded[i..i + w]) {
+            *d += kv * v;
+        }
     }
 }
 
@@ -257,6 +289,19 @@ mod tests {
         for y in 0..3 {
             for x in 0..9 {
                 assert!((b.at(x, y) - direct(x, y)).abs() < 1e-5, "{x},{y}");
+            }
+        }
+        // The separable reduction equals the blur averaged over each coarse pixel's 2×2
+        // fine pixels (odd sizes: the last pixel pairs with itself).
+        let odd = Field::new(9, 7, (0..63).map(|i| ((i * 13) % 11) as f32).collect());
+        let (r, b) = (odd.reduce(), odd.blur5());
+        assert_eq!((r.width, r.height), (5, 4));
+        for y in 0..4 {
+            for x in 0..5 {
+                let (x1, y1) = ((2 * x + 1).min(8), (2 * y + 1).min(6));
+                let avg =
+                    0.25 * (b.at(2 * x, 2 * y) + b.at(x1, 2 * y) + b.at(2 * x, y1) + b.at(x1, y1));
+                assert!((r.at(x, y) - avg).abs() < 1e-5, "{x},{y}");
             }
         }
     }
