@@ -21,6 +21,15 @@
 //! Table size: one table per system of at least twice the vertex count (the paper's
 //! measured optimum), a power of two, doubled as vertices are added. Entries carry their
 //! box, so hash collisions are filtered exactly and answers never hold duplicates.
+//!
+//! Hash function: where equation 2 multiplies the box indices by large primes, we wrap
+//! the plane onto a torus of 2^⌈b/2⌉ × 2^⌊b/2⌋ boxes (b = log2 of the table size) and
+//! take the box's position on it. A move reads a few neighbouring boxes, which land in
+//! neighbouring buckets instead of random ones, and boxes collide only when a whole
+//! torus side apart — never for contours within 2^⌊b/2⌋ boxes (2,048 l at 10⁶ vertices).
+//! Measured (cachegrind, `prof_moves hash … 10000`, 10⁶ vertices): 0.33 last-level
+//! cache misses per move against 0.82 with equation 2's multipliers (8% of moves then
+//! met a bucket shared with another box and counted it box by box).
 
 use super::broad_phase::{BroadPhase, Countable};
 use crate::geometry::{Aabb, Point};
@@ -75,10 +84,13 @@ fn cells_at([kx, ky]: [i32; 2]) -> [[i32; 2]; 4] {
 
 #[inline]
 fn hash(cell: [i32; 2], bits: u32) -> usize {
-    // Large odd multipliers (the primes p₁, p₂ of equation 2), top bits kept.
-    let h = (cell[0] as u32 as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
-        ^ (cell[1] as u32 as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
-    (h >> (64 - bits)) as usize
+    // The plane wrapped onto a torus of 2^bx × 2^by boxes: neighbouring boxes land in
+    // neighbouring buckets, and boxes collide only 2^bx (or 2^by) boxes apart.
+    let bx = bits.div_ceil(2);
+    let by = bits - bx;
+    let x = cell[0] as u32 as usize & ((1 << bx) - 1);
+    let y = cell[1] as u32 as usize & ((1 << by) - 1);
+    x | (y << bx)
 }
 
 impl StaggeredHash {
