@@ -703,17 +703,30 @@ fn hints(field: &Field, init: &[Shape]) -> (Option<f64>, Option<f64>) {
                 }
             }
             Shape::Rect { min, max } => {
+                // Pixels whose centre lies within `band` of a side: whole rows near the
+                // top and bottom, the ends of the rows between.
                 let band = 4.0;
+                let near_x = |x: usize| {
+                    let fx = x as f64 + 0.5;
+                    fx - min.x < band || max.x - fx < band
+                };
+                let (x0, x1) = (
+                    min.x.max(0.0) as usize,
+                    max.x.min(field.width as f64) as usize,
+                );
                 for y in (min.y.max(0.0) as usize)..(max.y.min(field.height as f64) as usize) {
-                    for x in (min.x.max(0.0) as usize)..(max.x.min(field.width as f64) as usize) {
-                        let (fx, fy) = (x as f64 + 0.5, y as f64 + 0.5);
-                        if fx - min.x < band
-                            || max.x - fx < band
-                            || fy - min.y < band
-                            || max.y - fy < band
-                        {
-                            bg.push(field.at(x, y) as f64);
-                        }
+                    let fy = y as f64 + 0.5;
+                    let whole = fy - min.y < band || max.y - fy < band;
+                    let mut left = x0;
+                    while left < x1 && (whole || near_x(left)) {
+                        left += 1;
+                    }
+                    let mut right = x1;
+                    while right > left && near_x(right - 1) {
+                        right -= 1;
+                    }
+                    for x in (x0..left).chain(right..x1) {
+                        bg.push(field.at(x, y) as f64);
                     }
                 }
             }
