@@ -49,12 +49,12 @@ pub struct StaggeredHash {
     head: Vec<u32>,
     /// Nodes per bucket (the quiet-move certificate counts them, see [`Countable`]).
     fill: Vec<u32>,
-    /// Per node `4 v + s`: list links, its box, and its bucket (`NIL` when absent).
+    /// Per node `4 v + s`: list links and its bucket (`NIL` when absent).
     link_next: Vec<u32>,
     link_prev: Vec<u32>,
-    cell: Vec<[i32; 2]>,
     bucket: Vec<u32>,
-    /// Per vertex: its half-box (which fixes its four boxes).
+    /// Per vertex: its half-box, which fixes its box in every system (no per-node copy:
+    /// a quarter of the memory a move and a query touch).
     half: Vec<[i32; 2]>,
     count: usize,
 }
@@ -105,7 +105,6 @@ impl StaggeredHash {
             fill: vec![0; 4 << bits],
             link_next: Vec::new(),
             link_prev: Vec::new(),
-            cell: Vec::new(),
             bucket: Vec::new(),
             half: Vec::new(),
             count: 0,
@@ -124,6 +123,17 @@ impl StaggeredHash {
         [
             floor_i32(2.0 * (p.x * self.inv_l)),
             floor_i32(2.0 * (p.y * self.inv_l)),
+        ]
+    }
+
+    /// The box of node `4 v + s` in its system s.
+    #[inline]
+    fn node_cell(&self, node: usize) -> [i32; 2] {
+        let [kx, ky] = self.half[node >> 2];
+        let s = node & 3;
+        [
+            kx.saturating_add((s & 1) as i32) >> 1,
+            ky.saturating_add((s >> 1) as i32) >> 1,
         ]
     }
 
@@ -148,7 +158,6 @@ impl StaggeredHash {
         }
         self.head[b as usize] = node as u32;
         self.fill[b as usize] += 1;
-        self.cell[node] = cell;
         self.bucket[node] = b;
     }
 
@@ -178,7 +187,7 @@ impl StaggeredHash {
         self.fill = vec![0; 4 << self.bits];
         for node in 0..self.bucket.len() {
             if self.bucket[node] != NIL {
-                let c = self.cell[node];
+                let c = self.node_cell(node);
                 self.link(node, c);
             }
         }
@@ -207,7 +216,7 @@ impl StaggeredHash {
     /// Whether the node's box is one the query `r` reads.
     #[inline]
     fn node_in(&self, node: usize, r: &Reach) -> bool {
-        let c = self.cell[node];
+        let c = self.node_cell(node);
         match *r {
             Reach::One { sys, cell } => node & 3 == sys && c == cell,
             Reach::Range { lo, hi } => {
@@ -245,7 +254,7 @@ impl StaggeredHash {
         let mut node = self.head[self.bucket_of(cell, sys) as usize];
         while node != NIL {
             let i = node as usize;
-            if i & 3 == sys && self.cell[i] == cell {
+            if i & 3 == sys && self.node_cell(i) == cell {
                 out.push(node >> 2);
             }
             node = self.link_next[i];
@@ -259,7 +268,6 @@ impl BroadPhase for StaggeredHash {
         if base >= self.bucket.len() {
             self.link_next.resize(base + 4, NIL);
             self.link_prev.resize(base + 4, NIL);
-            self.cell.resize(base + 4, [0, 0]);
             self.bucket.resize(base + 4, NIL);
             self.half.resize(v as usize + 1, [0, 0]);
         }
@@ -290,10 +298,10 @@ impl BroadPhase for StaggeredHash {
         if self.half[v as usize] == k {
             return; // the common small move: same half-box, same four boxes
         }
-        self.half[v as usize] = k;
+        let old = cells_at(std::mem::replace(&mut self.half[v as usize], k));
         let base = 4 * v as usize;
         for (s, c) in cells_at(k).into_iter().enumerate() {
-            if self.cell[base + s] != c {
+            if old[s] != c {
                 self.unlink(base + s);
                 self.link(base + s, c);
             }
@@ -312,7 +320,7 @@ impl BroadPhase for StaggeredHash {
         let cells = self.cells_of(p);
         (0..4).all(|s| {
             let c = cells[s];
-            if self.bucket[base + s] == NIL || self.cell[base + s] != c {
+            if self.bucket[base + s] == NIL || self.node_cell(base + s) != c {
                 return false;
             }
             let mut node = self.head[self.bucket_of(c, s) as usize];
@@ -397,7 +405,7 @@ impl Countable for StaggeredHash {
             let mut node = self.head[self.bucket_of(cell, sys) as usize];
             while node != NIL {
                 let i = node as usize;
-                n += (i & 3 == sys && self.cell[i] == cell) as u32;
+                n += (i & 3 == sys && self.node_cell(i) == cell) as u32;
                 node = self.link_next[i];
             }
         };
