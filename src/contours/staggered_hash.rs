@@ -26,7 +26,7 @@
 //! the plane onto a torus of 2^⌈b/2⌉ × 2^⌊b/2⌋ boxes (b = log2 of the table size) and
 //! take the box's position on it. A move reads a few neighbouring boxes, which land in
 //! neighbouring buckets instead of random ones, and boxes collide only when a whole
-//! torus side apart — never for contours within 2^⌊b/2⌋ boxes (2,048 l at 10⁶ vertices).
+//! torus side apart — never for contours within 2^⌊b/2⌋ boxes (1,024 at 10⁶ vertices).
 //! Measured (cachegrind, `prof_moves hash … 10000`, 10⁶ vertices): 0.33 last-level
 //! cache misses per move against 0.82 with equation 2's multipliers (8% of moves then
 //! met a bucket shared with another box and counted it box by box).
