@@ -19,8 +19,9 @@
 //! mostly the bucket counters), a trade we did not take: 4s is the default.
 //!
 //! Table size: one table per system of at least twice the vertex count (the paper's
-//! measured optimum), a power of two, doubled as vertices are added. Entries carry their
-//! box, so hash collisions are filtered exactly and answers never hold duplicates.
+//! measured optimum), a power of two, doubled as vertices are added. An entry's box
+//! follows from its vertex's half-box, so hash collisions are filtered exactly and
+//! answers never hold duplicates.
 //!
 //! Hash function: where equation 2 multiplies the box indices by large primes, we wrap
 //! the plane onto a torus of 2^⌈b/2⌉ × 2^⌊b/2⌋ boxes (b = log2 of the table size) and
