@@ -149,6 +149,18 @@ impl StaggeredHash {
         ((sys << self.bits) + hash(cell, self.bits)) as u32
     }
 
+    /// Vertex `v` moved into half-box `k`: its nodes move to their new boxes.
+    fn relink(&mut self, v: u32, k: [i32; 2]) {
+        let old = cells_at(std::mem::replace(&mut self.half[v as usize], k));
+        let base = 4 * v as usize;
+        for (s, c) in cells_at(k).into_iter().enumerate() {
+            if old[s] != c {
+                self.unlink(base + s);
+                self.link(base + s, c);
+            }
+        }
+    }
+
     fn link(&mut self, node: usize, cell: [i32; 2]) {
         let b = self.bucket_of(cell, node & 3);
         let h = self.head[b as usize];
@@ -293,19 +305,11 @@ impl BroadPhase for StaggeredHash {
         self.count -= 1;
     }
 
-    #[inline]
+    #[inline(always)]
     fn update(&mut self, v: u32, p: Point) {
         let k = self.half_box(p);
-        if self.half[v as usize] == k {
-            return; // the common small move: same half-box, same four boxes
-        }
-        let old = cells_at(std::mem::replace(&mut self.half[v as usize], k));
-        let base = 4 * v as usize;
-        for (s, c) in cells_at(k).into_iter().enumerate() {
-            if old[s] != c {
-                self.unlink(base + s);
-                self.link(base + s, c);
-            }
+        if self.half[v as usize] != k {
+            self.relink(v, k); // rare: the common small move keeps its half-box
         }
     }
 

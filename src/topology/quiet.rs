@@ -47,7 +47,11 @@ impl ContourSet {
         let label = self.label[v as usize];
         self.ring_mut(label).area2 += delta2;
         self.pos[v as usize] = q;
-        self.bins.update(v, q);
+        // Per arm, so each broad phase's update can be inlined here.
+        match &mut self.bins {
+            Broad::Bins(b) => b.update(v, q),
+            Broad::Hash(h) => h.update(v, q),
+        }
         true
     }
 
