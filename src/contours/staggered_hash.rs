@@ -61,7 +61,7 @@ pub struct StaggeredHash {
 }
 
 /// What a query box reads: one box of one system, or a range of system-0 boxes.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Reach {
     One { sys: usize, cell: [i32; 2] },
     Range { lo: [i32; 2], hi: [i32; 2] },
@@ -240,37 +240,44 @@ impl StaggeredHash {
 
     fn read(&self, r: &Reach, out: &mut Vec<u32>) {
         out.clear();
-        match *r {
-            Reach::One { sys, cell } => self.read_box(sys, cell, out),
-            Reach::Range { lo, hi } => {
-                let boxes = (hi[0] as i64 - lo[0] as i64 + 1) * (hi[1] as i64 - lo[1] as i64 + 1);
-                if boxes as usize > self.count {
-                    // A huge box (a very long move): scanning every vertex is cheaper.
-                    for node in (0..self.bucket.len()).step_by(4) {
-                        if self.bucket[node] != NIL && self.node_in(node, r) {
-                            out.push((node / 4) as u32);
-                        }
-                    }
-                    return;
-                }
-                for y in lo[1]..=hi[1] {
-                    for x in lo[0]..=hi[0] {
-                        self.read_box(0, [x, y], out);
+        if let Reach::Range { lo, hi } = *r {
+            let boxes = (hi[0] as i64 - lo[0] as i64 + 1) * (hi[1] as i64 - lo[1] as i64 + 1);
+            if boxes as usize > self.count {
+                // A huge box (a very long move): scanning every vertex is cheaper.
+                for node in (0..self.bucket.len()).step_by(4) {
+                    if self.bucket[node] != NIL && self.node_in(node, r) {
+                        out.push((node / 4) as u32);
                     }
                 }
+                return;
             }
         }
+        self.for_each_in(r, |v| out.push(v));
     }
 
+    /// Calls `f` with every vertex registered in the boxes `r` reads, walking their
+    /// buckets' lists (other boxes hashed alike are skipped).
     #[inline]
-    fn read_box(&self, sys: usize, cell: [i32; 2], out: &mut Vec<u32>) {
-        let mut node = self.head[self.bucket_of(cell, sys) as usize];
-        while node != NIL {
-            let i = node as usize;
-            if i & 3 == sys && self.node_cell(i) == cell {
-                out.push(node >> 2);
+    fn for_each_in(&self, r: &Reach, mut f: impl FnMut(u32)) {
+        let mut in_box = |sys: usize, cell: [i32; 2]| {
+            let mut node = self.head[self.bucket_of(cell, sys) as usize];
+            while node != NIL {
+                let i = node as usize;
+                if i & 3 == sys && self.node_cell(i) == cell {
+                    f(node >> 2);
+                }
+                node = self.link_next[i];
             }
-            node = self.link_next[i];
+        };
+        match *r {
+            Reach::One { sys, cell } => in_box(sys, cell),
+            Reach::Range { lo, hi } => {
+                for y in lo[1]..=hi[1] {
+                    for x in lo[0]..=hi[0] {
+                        in_box(0, [x, y]);
+                    }
+                }
+            }
         }
     }
 }
@@ -349,18 +356,10 @@ impl BroadPhase for StaggeredHash {
 /// axis on the vertex's half-box, no look at its four boxes).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct HashRegion {
-    boxes: Boxes,
+    boxes: Reach,
     /// Half-boxes `lo ..= lo + size` per axis (wide: 2c − o may leave i32's range).
     lo: [i64; 2],
     size: [u64; 2],
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Boxes {
-    /// Box `cell` of system `sys`.
-    One { sys: usize, cell: [i32; 2] },
-    /// System-0 boxes from `lo` to `hi` inclusive.
-    Range { lo: [i32; 2], hi: [i32; 2] },
 }
 
 impl Countable for StaggeredHash {
@@ -372,7 +371,7 @@ impl Countable for StaggeredHash {
                 // Box c of the system with offset o holds half-boxes 2c − o and 2c − o + 1.
                 let o = [(sys & 1) as i64, (sys >> 1) as i64];
                 let r = HashRegion {
-                    boxes: Boxes::One { sys, cell },
+                    boxes: Reach::One { sys, cell },
                     lo: [2 * cell[0] as i64 - o[0], 2 * cell[1] as i64 - o[1]],
                     size: [1, 1],
                 };
@@ -392,7 +391,7 @@ impl Countable for StaggeredHash {
                     }
                 }
                 let r = HashRegion {
-                    boxes: Boxes::Range { lo, hi },
+                    boxes: Reach::Range { lo, hi },
                     lo: [2 * lo[0] as i64, 2 * lo[1] as i64],
                     size: [
                         (2 * (hi[0] as i64 - lo[0] as i64) + 1) as u64,
@@ -406,24 +405,7 @@ impl Countable for StaggeredHash {
 
     fn exact_count(&self, r: &HashRegion) -> u32 {
         let mut n = 0;
-        let mut count = |sys: usize, cell: [i32; 2]| {
-            let mut node = self.head[self.bucket_of(cell, sys) as usize];
-            while node != NIL {
-                let i = node as usize;
-                n += (i & 3 == sys && self.node_cell(i) == cell) as u32;
-                node = self.link_next[i];
-            }
-        };
-        match r.boxes {
-            Boxes::One { sys, cell } => count(sys, cell),
-            Boxes::Range { lo, hi } => {
-                for y in lo[1]..=hi[1] {
-                    for x in lo[0]..=hi[0] {
-                        count(0, [x, y]);
-                    }
-                }
-            }
-        }
+        self.for_each_in(&r.boxes, |_| n += 1);
         n
     }
 

@@ -74,13 +74,7 @@ impl Field {
         for y in 0..h2 {
             let (y0, y1) = pair(y, h);
             for (line, yk) in lines.iter_mut().zip([y0, y1]) {
-                line.fill(0.0);
-                for (i, &kv) in BINOMIAL5.iter().enumerate() {
-                    let yi = (yk + i).saturating_sub(2).min(h - 1);
-                    for (d, &v) in line.iter_mut().zip(&tmp[yi * w2..(yi + 1) * w2]) {
-                        *d += kv * v;
-                    }
-                }
+                blur_column(&tmp, w2, yk, &BINOMIAL5, line);
             }
             for (x, d) in data[y * w2..(y + 1) * w2].iter_mut().enumerate() {
                 *d = 0.5 * (lines[0][x] + lines[1][x]);
@@ -105,15 +99,8 @@ impl Field {
             blur_row(src, k, &mut padded, dst);
         }
         let mut out = vec![0f32; w * h];
-        for y in 0..h {
-            let dst = &mut out[y * w..(y + 1) * w];
-            for (i, &kv) in k.iter().enumerate() {
-                let yi = (y + i).saturating_sub(r).min(h - 1);
-                let src = &tmp[yi * w..(yi + 1) * w];
-                for (d, &v) in dst.iter_mut().zip(src) {
-                    *d += kv * v;
-                }
-            }
+        for (y, dst) in out.chunks_exact_mut(w).enumerate() {
+            blur_column(&tmp, w, y, k, dst);
         }
         Field::new(w, h, out)
     }
@@ -121,6 +108,19 @@ impl Field {
 
 /// The pyramid's kernel, 1/16 [1 4 6 4 1].
 const BINOMIAL5: [f32; 5] = [1.0 / 16.0, 4.0 / 16.0, 6.0 / 16.0, 4.0 / 16.0, 1.0 / 16.0];
+
+/// Row `y` of the vertical blur of `src` (rows of `w`) with kernel `k`, the border rows
+/// continuing, into `out`: whole rows times one weight, in kernel order.
+fn blur_column<const N: usize>(src: &[f32], w: usize, y: usize, k: &[f32; N], out: &mut [f32]) {
+    let (r, h) = (N / 2, src.len() / w);
+    out.fill(0.0);
+    for (i, &kv) in k.iter().enumerate() {
+        let yi = (y + i).saturating_sub(r).min(h - 1);
+        for (d, &v) in out.iter_mut().zip(&src[yi * w..(yi + 1) * w]) {
+            *d += kv * v;
+        }
+    }
+}
 
 /// Blurs one row with kernel `k`, the border value continuing (`padded`: scratch of
 /// `row.len() + N - 1`). Adds whole shifted rows times one weight: loops the compiler

@@ -94,36 +94,29 @@ impl ContourSet {
             far || (segment_intersection(p, q, a, b) == SegmentIntersection::None
                 && segment_intersection(q, n, a, b) == SegmentIntersection::None)
         };
-        // o, p and n lie in B, hence in R. Walk on from the vertices beyond p and n,
-        // testing each walked vertex's edge away from p (or n) on the way.
+        // o, p and n lie in B, hence in R. Walk on from the vertices beyond p and n (along
+        // prev, then next) while they are registered in R, testing each walked vertex's
+        // edge away from p (or n) on the way; give up on reaching the other end (the walk
+        // went round the ring) or meeting more than `limit` vertices.
         let (c2, d2) = (self.prev[pid as usize], self.next[nid as usize]);
-        let (pc, pd) = (self.pos[c2 as usize], self.pos[d2 as usize]);
         let mut met = 3;
-        let (mut w, mut pw) = (c2, pc);
-        while bins.in_region(w, &region) {
-            if w == nid || met > MAX_WALK {
-                return None;
+        for (start, link, stop, limit) in [
+            (c2, &self.prev, nid, MAX_WALK),
+            (d2, &self.next, pid, 2 * MAX_WALK),
+        ] {
+            let (mut w, mut pw) = (start, self.pos[start as usize]);
+            while bins.in_region(w, &region) {
+                if w == stop || met > limit {
+                    return None;
+                }
+                met += 1;
+                let u = link[w as usize];
+                let pu = self.pos[u as usize];
+                if !clear(pw, pu) {
+                    return None;
+                }
+                (w, pw) = (u, pu);
             }
-            met += 1;
-            let u = self.prev[w as usize];
-            let pu = self.pos[u as usize];
-            if !clear(pu, pw) {
-                return None;
-            }
-            (w, pw) = (u, pu);
-        }
-        let (mut w, mut pw) = (d2, pd);
-        while bins.in_region(w, &region) {
-            if met > 2 * MAX_WALK {
-                return None;
-            }
-            met += 1;
-            let u = self.next[w as usize];
-            let pu = self.pos[u as usize];
-            if !clear(pw, pu) {
-                return None;
-            }
-            (w, pw) = (u, pu);
         }
         // A hash bucket's count includes other boxes hashed to it: count exactly then.
         if met != held && met != bins.exact_count(&region) {
@@ -134,6 +127,7 @@ impl ContourSet {
         let apart = |c0: Point, c1: Point, e0: Point, e1: Point| {
             segment_intersection(c0, c1, e0, e1) == SegmentIntersection::None
         };
+        let (pc, pd) = (self.pos[c2 as usize], self.pos[d2 as usize]);
         if folds_back(p, q, pc)
             || folds_back(n, q, pd)
             || !apart(q, n, pc, p)
