@@ -6,47 +6,52 @@
 //! Theorem 3, 2D: two points closer than l/2 along each axis share a box in at least one
 //! system. Applied to a query box's two corners: **a query box whose sides are at most l/2
 //! lies inside a single box of some system**, so it reads one hash bucket. Every vertex
-//! is stored once per system; a larger box reads the system-(0, 0) boxes it overlaps.
+//! is stored once per system. A larger box reads a rectangle of boxes of the system whose
+//! offsets fit it best, chosen per axis (the four systems are the four pairs of offsets):
+//! a box spanning m + 1 half-boxes along an axis needs ⌊m/2⌋ + 1 boxes there.
 //!
 //! Box size rule. Theorem 4's reasoning in 2D: two crossing edges of length at most s
 //! have endpoints closer than s/√2, so l > √2·s would do for pair search. Our queries are
-//! boxes instead — c' grown by s/2, sides about |p − n| + s — and we take l = 4s: moves
-//! whose c' spans at most s per axis read one bucket, the others a few boxes of one
-//! system. Measured (callgrind, `examples/prof_moves.rs`, 10⁴ vertices, quiet moves):
-//! 892 instructions per move at l = 3s, 894 at 4s, 986 at 5s, 1,005 at 6s (larger boxes
-//! make the certificate's walk longer). At 10⁶ vertices larger boxes miss the last-level
-//! cache less often (cachegrind: 0.82 misses per move at 4s, 0.63 at 5s, 0.54 at 6s,
-//! mostly the bucket counters), a trade we did not take: 4s is the default.
+//! boxes instead — c' grown by s/2, sides about |p − n| + s — and we take l = 3s: a move
+//! whose c' spans at most s/2 per axis reads one box, one spanning up to 2s at most two
+//! boxes per axis. Smaller boxes make the quiet move's region tighter (a shorter walk),
+//! larger ones make it one box more often. Measured (cachegrind, `examples/prof_moves.rs
+//! hash 600000 10000` minus 200000 moves, 10⁶ vertices, per move): l = 2.5s 830
+//! instructions and 0.46 last-level misses, 3s 782 and 0.34, 4s 800 and 0.35, 5s 824 and
+//! 0.29. We take the fewest instructions; the 4096² wrap (`cargo bench --bench scale --
+//! wrap adaptive hash`) takes the same time at 3s and 4s within this machine's noise.
 //!
 //! Table size: one table per system of at least twice the vertex count (the paper's
-//! measured optimum), a power of two, doubled as vertices are added. An entry's box
-//! follows from its vertex's half-box, so hash collisions are filtered exactly and
-//! answers never hold duplicates.
+//! measured optimum), a power of two, doubled as vertices are added. The four systems'
+//! buckets of one hash value sit side by side (bucket `4h + s`): boxes of the four systems
+//! around one place share cache lines (10⁶ vertices, l = 4s: 0.64 first-level misses per
+//! move against 0.80 with one table after another). An entry's box follows from its
+//! vertex's half-box, so hash collisions are filtered exactly and answers never hold
+//! duplicates.
 //!
 //! Hash function: where equation 2 multiplies the box indices by large primes, we wrap
 //! the plane onto a torus of 2^⌈b/2⌉ × 2^⌊b/2⌋ boxes (b = log2 of the table size) and
 //! take the box's position on it. A move reads a few neighbouring boxes, which land in
 //! neighbouring buckets instead of random ones, and boxes collide only when a whole
 //! torus side apart — never for contours within 2^⌊b/2⌋ boxes (1,024 at 10⁶ vertices).
-//! Measured (cachegrind, `prof_moves hash … 10000`, 10⁶ vertices): 0.33 last-level
-//! cache misses per move against 0.82 with equation 2's multipliers (8% of moves then
-//! met a bucket shared with another box and counted it box by box).
+//! Measured (cachegrind, `prof_moves hash … 10000`, 10⁶ vertices, l = 4s): 0.33
+//! last-level cache misses per move against 0.82 with equation 2's multipliers (8% of
+//! moves then met a bucket shared with another box and counted it box by box).
 
 use super::broad_phase::{BroadPhase, Countable};
 use crate::geometry::{Aabb, Point};
 
 const NIL: u32 = u32::MAX;
 /// Box side in units of the edge bound (see the module doc).
-pub const BOX_PER_EDGE: f64 = 4.0;
+pub const BOX_PER_EDGE: f64 = 3.0;
 const MIN_TABLE: usize = 1024;
 
 /// Four staggered hash grids of vertex lists (intrusive, so updates allocate nothing).
 #[derive(Clone, Debug)]
 pub struct StaggeredHash {
     inv_l: f64,
-    /// log2 of the per-system table size.
-    bits: u32,
-    /// `4 << bits` bucket heads: system s owns `[s << bits, (s + 1) << bits)`.
+    torus: Torus,
+    /// `4 << bits` bucket heads: system s of hash value h at `4h + s`.
     head: Vec<u32>,
     /// Nodes per bucket (the quiet-move certificate counts them, see [`Countable`]).
     fill: Vec<u32>,
@@ -60,18 +65,27 @@ pub struct StaggeredHash {
     count: usize,
 }
 
-/// What a query box reads: one box of one system, or a range of system-0 boxes.
+/// What a query box reads: a rectangle of boxes `lo ..= hi` of one system (one box
+/// when the query's sides are at most l/2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Reach {
-    One { sys: usize, cell: [i32; 2] },
-    Range { lo: [i32; 2], hi: [i32; 2] },
+struct Reach {
+    sys: usize,
+    lo: [i32; 2],
+    hi: [i32; 2],
+}
+
+impl Reach {
+    fn boxes(&self) -> i64 {
+        (self.hi[0] as i64 - self.lo[0] as i64 + 1) * (self.hi[1] as i64 - self.lo[1] as i64 + 1)
+    }
 }
 
 #[inline]
 fn floor_i32(f: f64) -> i32 {
-    // Saturating cast, then floor for negatives (no libm call on baseline x86_64).
-    let t = f as i32;
-    t - ((t as f64) > f) as i32
+    // ⌊f⌋ by truncating f + 2³¹ (one saturating cast: no fix-up for negatives, no libm
+    // call on baseline x86_64). Within 2⁻²¹ below an integer the sum rounds up to it, so
+    // this is ⌊f⌋ or ⌊f⌋ + 1 there; what every use needs is a monotone map, which it is.
+    ((f + 2_147_483_648.0) as u32 ^ 0x8000_0000) as i32
 }
 
 /// The boxes of half-box `k` in the four systems: with k = ⌊2x/l⌋, ⌊x/l⌋ = k >> 1 and
@@ -83,15 +97,32 @@ fn cells_at([kx, ky]: [i32; 2]) -> [[i32; 2]; 4] {
     [[x0, y0], [x1, y0], [x0, y1], [x1, y1]]
 }
 
-#[inline]
-fn hash(cell: [i32; 2], bits: u32) -> usize {
-    // The plane wrapped onto a torus of 2^bx × 2^by boxes: neighbouring boxes land in
-    // neighbouring buckets, and boxes collide only 2^bx (or 2^by) boxes apart.
-    let bx = bits.div_ceil(2);
-    let by = bits - bx;
-    let x = cell[0] as u32 as usize & ((1 << bx) - 1);
-    let y = cell[1] as u32 as usize & ((1 << by) - 1);
-    x | (y << bx)
+/// The hash: the plane wrapped onto a torus of 2^bx × 2^by boxes (bx + by = `bits`, the
+/// log2 of the per-system table size). Neighbouring boxes land in neighbouring buckets,
+/// and boxes collide only 2^bx (or 2^by) boxes apart. The four systems interleave.
+#[derive(Clone, Copy, Debug)]
+struct Torus {
+    bits: u32,
+    bx: u32,
+    mask: [u32; 2],
+}
+
+impl Torus {
+    fn new(bits: u32) -> Self {
+        let bx = bits.div_ceil(2);
+        Torus {
+            bits,
+            bx,
+            mask: [(1 << bx) - 1, (1 << (bits - bx)) - 1],
+        }
+    }
+
+    #[inline]
+    fn bucket(&self, cell: [i32; 2], sys: usize) -> u32 {
+        let x = cell[0] as u32 & self.mask[0];
+        let y = cell[1] as u32 & self.mask[1];
+        (x | (y << self.bx)) << 2 | sys as u32
+    }
 }
 
 impl StaggeredHash {
@@ -101,7 +132,7 @@ impl StaggeredHash {
         let bits = MIN_TABLE.trailing_zeros();
         StaggeredHash {
             inv_l: 1.0 / l,
-            bits,
+            torus: Torus::new(bits),
             head: vec![NIL; 4 << bits],
             fill: vec![0; 4 << bits],
             link_next: Vec::new(),
@@ -114,7 +145,7 @@ impl StaggeredHash {
 
     /// Buckets per system.
     pub fn table_size(&self) -> usize {
-        1 << self.bits
+        1 << self.torus.bits
     }
 
     /// The half-box of `p`: k = (⌊2x/l⌋, ⌊2y/l⌋). It fixes the boxes of all four systems
@@ -146,7 +177,7 @@ impl StaggeredHash {
 
     #[inline]
     fn bucket_of(&self, cell: [i32; 2], sys: usize) -> u32 {
-        ((sys << self.bits) + hash(cell, self.bits)) as u32
+        self.torus.bucket(cell, sys)
     }
 
     /// Vertex `v` moved into half-box `k`: its nodes move to their new boxes.
@@ -190,14 +221,16 @@ impl StaggeredHash {
 
     /// Doubles the tables until they hold at least twice the vertex count.
     fn grow(&mut self) {
-        while self.count * 2 > (1 << self.bits) {
-            self.bits += 1;
+        let mut bits = self.torus.bits;
+        while self.count * 2 > (1 << bits) {
+            bits += 1;
         }
-        if self.head.len() == 4 << self.bits {
+        if bits == self.torus.bits {
             return;
         }
-        self.head = vec![NIL; 4 << self.bits];
-        self.fill = vec![0; 4 << self.bits];
+        self.torus = Torus::new(bits);
+        self.head = vec![NIL; 4 << bits];
+        self.fill = vec![0; 4 << bits];
         for node in 0..self.bucket.len() {
             if self.bucket[node] != NIL {
                 let c = self.node_cell(node);
@@ -209,20 +242,16 @@ impl StaggeredHash {
     #[inline]
     fn reach(&self, b: &Aabb) -> Reach {
         let (lo, hi) = (self.half_box(b.min), self.half_box(b.max));
-        // Per axis: corners in one half-box share the box of either system; in adjacent
-        // half-boxes k and k + 1, that of the system whose boxes start at k (k even:
-        // offset 0, k odd: offset 1/2); further apart, none.
-        let span = [hi[0] as i64 - lo[0] as i64, hi[1] as i64 - lo[1] as i64];
-        if span[0] > 1 || span[1] > 1 {
-            return Reach::Range {
-                lo: [lo[0] >> 1, lo[1] >> 1],
-                hi: [hi[0] >> 1, hi[1] >> 1],
-            };
-        }
-        let (ox, oy) = (span[0] as i32 & lo[0] & 1, span[1] as i32 & lo[1] & 1);
-        Reach::One {
+        // Per axis, the offset whose boxes start at the lowest half-box k (k even: offset
+        // 0, k odd: offset 1/2) covers half-boxes k ..= k + m with ⌊m/2⌋ + 1 boxes, the
+        // fewest any offset can: one box when the corners share a half-box or lie in
+        // adjacent ones (Theorem 3). Each axis picks its own; the four systems are the four
+        // pairs of offsets.
+        let (ox, oy) = (lo[0] & 1, lo[1] & 1);
+        Reach {
             sys: (ox | (oy << 1)) as usize,
-            cell: [(lo[0] + ox) >> 1, (lo[1] + oy) >> 1],
+            lo: [lo[0].saturating_add(ox) >> 1, lo[1].saturating_add(oy) >> 1],
+            hi: [hi[0].saturating_add(ox) >> 1, hi[1].saturating_add(oy) >> 1],
         }
     }
 
@@ -230,27 +259,23 @@ impl StaggeredHash {
     #[inline]
     fn node_in(&self, node: usize, r: &Reach) -> bool {
         let c = self.node_cell(node);
-        match *r {
-            Reach::One { sys, cell } => node & 3 == sys && c == cell,
-            Reach::Range { lo, hi } => {
-                node & 3 == 0 && c[0] >= lo[0] && c[0] <= hi[0] && c[1] >= lo[1] && c[1] <= hi[1]
-            }
-        }
+        node & 3 == r.sys
+            && c[0] >= r.lo[0]
+            && c[0] <= r.hi[0]
+            && c[1] >= r.lo[1]
+            && c[1] <= r.hi[1]
     }
 
     fn read(&self, r: &Reach, out: &mut Vec<u32>) {
         out.clear();
-        if let Reach::Range { lo, hi } = *r {
-            let boxes = (hi[0] as i64 - lo[0] as i64 + 1) * (hi[1] as i64 - lo[1] as i64 + 1);
-            if boxes as usize > self.count {
-                // A huge box (a very long move): scanning every vertex is cheaper.
-                for node in (0..self.bucket.len()).step_by(4) {
-                    if self.bucket[node] != NIL && self.node_in(node, r) {
-                        out.push((node / 4) as u32);
-                    }
+        if r.boxes() as usize > self.count {
+            // A huge box (a very long move): scanning every vertex is cheaper.
+            for node in (r.sys..self.bucket.len()).step_by(4) {
+                if self.bucket[node] != NIL && self.node_in(node, r) {
+                    out.push((node / 4) as u32);
                 }
-                return;
             }
+            return;
         }
         self.for_each_in(r, |v| out.push(v));
     }
@@ -259,23 +284,15 @@ impl StaggeredHash {
     /// buckets' lists (other boxes hashed alike are skipped).
     #[inline]
     fn for_each_in(&self, r: &Reach, mut f: impl FnMut(u32)) {
-        let mut in_box = |sys: usize, cell: [i32; 2]| {
-            let mut node = self.head[self.bucket_of(cell, sys) as usize];
-            while node != NIL {
-                let i = node as usize;
-                if i & 3 == sys && self.node_cell(i) == cell {
-                    f(node >> 2);
-                }
-                node = self.link_next[i];
-            }
-        };
-        match *r {
-            Reach::One { sys, cell } => in_box(sys, cell),
-            Reach::Range { lo, hi } => {
-                for y in lo[1]..=hi[1] {
-                    for x in lo[0]..=hi[0] {
-                        in_box(0, [x, y]);
+        for y in r.lo[1]..=r.hi[1] {
+            for x in r.lo[0]..=r.hi[0] {
+                let mut node = self.head[self.bucket_of([x, y], r.sys) as usize];
+                while node != NIL {
+                    let i = node as usize;
+                    if i & 3 == r.sys && self.node_cell(i) == [x, y] {
+                        f(node >> 2);
                     }
+                    node = self.link_next[i];
                 }
             }
         }
@@ -351,9 +368,9 @@ impl BroadPhase for StaggeredHash {
     }
 }
 
-/// What the quiet-move certificate counts: one box of one system, or system-0 boxes.
-/// Either is a rectangle of half-boxes, which is what a walk tests (one comparison per
-/// axis on the vertex's half-box, no look at its four boxes).
+/// What the quiet-move certificate counts: the boxes a query reads. They are a rectangle
+/// of half-boxes, which is what a walk tests (one comparison per axis on the vertex's
+/// half-box, no look at its four boxes).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct HashRegion {
     boxes: Reach,
@@ -365,42 +382,34 @@ pub struct HashRegion {
 impl Countable for StaggeredHash {
     type Region = HashRegion;
 
+    #[inline]
     fn region(&self, b: &Aabb) -> Option<(HashRegion, u32)> {
-        match self.reach(b) {
-            Reach::One { sys, cell } => {
-                // Box c of the system with offset o holds half-boxes 2c − o and 2c − o + 1.
-                let o = [(sys & 1) as i64, (sys >> 1) as i64];
-                let r = HashRegion {
-                    boxes: Reach::One { sys, cell },
-                    lo: [2 * cell[0] as i64 - o[0], 2 * cell[1] as i64 - o[1]],
-                    size: [1, 1],
-                };
-                Some((r, self.fill[self.bucket_of(cell, sys) as usize]))
-            }
-            // A few boxes of system 0: their buckets' fills summed (a bucket shared by two
-            // of them counted twice: the sum only grows, and the exact count decides).
-            Reach::Range { lo, hi } => {
-                let boxes = (hi[0] as i64 - lo[0] as i64 + 1) * (hi[1] as i64 - lo[1] as i64 + 1);
-                if boxes > 4 {
-                    return None;
-                }
-                let mut n = 0;
-                for y in lo[1]..hi[1] + 1 {
-                    for x in lo[0]..hi[0] + 1 {
-                        n += self.fill[self.bucket_of([x, y], 0) as usize];
-                    }
-                }
-                let r = HashRegion {
-                    boxes: Reach::Range { lo, hi },
-                    lo: [2 * lo[0] as i64, 2 * lo[1] as i64],
-                    size: [
-                        (2 * (hi[0] as i64 - lo[0] as i64) + 1) as u64,
-                        (2 * (hi[1] as i64 - lo[1] as i64) + 1) as u64,
-                    ],
-                };
-                Some((r, n))
+        let r = self.reach(b);
+        // Box c of the system with offset o holds half-boxes 2c − o and 2c − o + 1.
+        let (ox, oy) = ((r.sys & 1) as i64, (r.sys >> 1) as i64);
+        let region = HashRegion {
+            boxes: r,
+            lo: [2 * r.lo[0] as i64 - ox, 2 * r.lo[1] as i64 - oy],
+            size: [
+                (2 * (r.hi[0] as i64 - r.lo[0] as i64) + 1) as u64,
+                (2 * (r.hi[1] as i64 - r.lo[1] as i64) + 1) as u64,
+            ],
+        };
+        if r.lo == r.hi {
+            return Some((region, self.fill[self.bucket_of(r.lo, r.sys) as usize]));
+        }
+        if r.boxes() > 4 {
+            return None;
+        }
+        // A bucket shared by two of the boxes is counted twice: the sum only grows, and
+        // the exact count decides.
+        let mut n = 0;
+        for y in r.lo[1]..=r.hi[1] {
+            for x in r.lo[0]..=r.hi[0] {
+                n += self.fill[self.bucket_of([x, y], r.sys) as usize];
             }
         }
+        Some((region, n))
     }
 
     fn exact_count(&self, r: &HashRegion) -> u32 {
@@ -431,20 +440,20 @@ mod tests {
 
     #[test]
     fn small_boxes_read_one_bucket_of_some_system() {
-        let h = StaggeredHash::new(1.0); // l = 4
+        let h = StaggeredHash::new(4.0 / BOX_PER_EDGE); // l = 4
         for &(x, y) in &[(0.0, 0.0), (3.9, 2.0), (-3.1, 11.7), (1.9, 1.9)] {
             let r = h.reach(&bx(x, y, x + 2.0, y + 2.0));
-            assert!(matches!(r, Reach::One { .. }), "{x},{y}: {r:?}");
+            assert_eq!(r.boxes(), 1, "{x},{y}: {r:?}");
         }
-        assert!(matches!(
-            h.reach(&bx(0.0, 0.0, 4.5, 1.0)),
-            Reach::Range { .. }
-        ));
+        // Half-boxes 0 ..= 2 along x need two boxes of either offset; along y the corners
+        // share half-box 1, so the offset-1/2 system's one box holds them.
+        let r = h.reach(&bx(0.0, 2.1, 4.5, 3.0));
+        assert_eq!((r.sys, r.lo, r.hi), (2, [0, 1], [1, 1]));
     }
 
     #[test]
     fn finds_inserted_moved_and_negative_vertices() {
-        let mut h = StaggeredHash::new(1.0);
+        let mut h = StaggeredHash::new(4.0 / BOX_PER_EDGE); // l = 4
         h.insert(0, Point::new(1.0, 1.0));
         h.insert(1, Point::new(-7.5, 4.0));
         h.insert(2, Point::new(40.0, 40.0));
@@ -466,7 +475,7 @@ mod tests {
 
     #[test]
     fn table_grows_to_twice_the_vertex_count() {
-        let mut h = StaggeredHash::new(1.0);
+        let mut h = StaggeredHash::new(4.0 / BOX_PER_EDGE); // l = 4
         for v in 0..5000u32 {
             h.insert(v, Point::new((v % 70) as f64 * 0.9, (v / 70) as f64 * 0.9));
         }
