@@ -44,7 +44,7 @@ fn env(name: &str, default: usize) -> usize {
 }
 
 fn main() {
-    // `cargo bench` passes `--bench`; a word after `--` picks sizes by prefix.
+    // `cargo bench` passes `--bench`; vertex counts after `--` pick sizes (`-- 1000000`).
     let words: Vec<String> = std::env::args()
         .skip(1)
         .filter(|a| !a.starts_with('-'))

@@ -148,8 +148,9 @@ impl StaggeredHash {
         1 << self.torus.bits
     }
 
-    /// The half-box of `p`: k = (⌊2x/l⌋, ⌊2y/l⌋). It fixes the boxes of all four systems
-    /// ([`cells_at`]), so a vertex whose half-box stays put keeps its boxes.
+    /// The half-box of `p`: k = (⌊2x/l⌋, ⌊2y/l⌋) as [`floor_i32`] rounds. It fixes the
+    /// boxes of all four systems ([`cells_at`]), so a vertex whose half-box stays put keeps
+    /// its boxes.
     #[inline]
     fn half_box(&self, p: Point) -> [i32; 2] {
         [
