@@ -27,10 +27,6 @@ fn block(set: &mut ContourSet, moves: &mut JitterMoves) -> f64 {
     t.elapsed().as_secs_f64() * 1e9 / BLOCK as f64
 }
 
-fn median(v: &mut [f64]) -> f64 {
-    quantile(v, 0.5)
-}
-
 fn quantile(v: &mut [f64], q: f64) -> f64 {
     v.sort_by(f64::total_cmp);
     v[((v.len() - 1) as f64 * q).round() as usize]
@@ -79,9 +75,9 @@ fn main() {
         }
         println!(
             "{n:>9}  {:>12.1}  {:>12.1}  {:>11.3}  {:>6.3}–{:.3}",
-            median(&mut ns[0]),
-            median(&mut ns[1]),
-            median(&mut ratio),
+            quantile(&mut ns[0], 0.5),
+            quantile(&mut ns[1], 0.5),
+            quantile(&mut ratio, 0.5),
             quantile(&mut ratio, 0.25),
             quantile(&mut ratio, 0.75),
         );

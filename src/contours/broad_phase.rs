@@ -50,7 +50,7 @@ pub(crate) fn push_outside_prevs(b: &Aabb, prev: &[u32], pos: &[Point], out: &mu
 
 /// A broad phase whose parts can be counted: the quiet-move certificate of
 /// `ContourSet::move_vertex`. A region is a part that holds every vertex lying in some box
-/// (a rectangle of bins; one box of one hash system, or a few system-0 boxes); if a walk
+/// (a rectangle of bins, or a rectangle of boxes of one hash system); if a walk
 /// along the rings meets as many vertices registered in the region as it holds, nothing
 /// else lies in the box.
 pub trait Countable: BroadPhase {

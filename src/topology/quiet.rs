@@ -7,8 +7,8 @@
 //! that chain.
 //!
 //! The certificate: let B be the box of p, o, q and n grown by half the edge reach, and
-//! R the part of the broad phase that a query for B reads (a rectangle of bins, or one
-//! box of one hash system, [`Countable`]), holding `k` registered vertices (a per-cell or
+//! R the part of the broad phase that a query for B reads (a rectangle of bins, or of
+//! boxes of one hash system, [`Countable`]), holding `k` registered vertices (a per-cell or
 //! per-bucket counter gives k at once; a hash bucket's counter may include other boxes
 //! hashed to it, and then the bucket's list is counted box by box before giving up).
 //! Walking from o backwards through p and forwards through n while the vertices are
