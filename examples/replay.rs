@@ -22,6 +22,7 @@ fn main() {
             topocontour::check::MoveMix {
                 lattice: lattice || s % 3 == 0,
                 broad,
+                wall: s % 4 == 1,
             },
         ) {
             Ok(e) => events += e,

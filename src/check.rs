@@ -334,6 +334,9 @@ pub struct MoveMix {
     pub lattice: bool,
     /// The broad phase of the set under test.
     pub broad: BroadPhaseKind,
+    /// Clamp every target to the domain, as the evolver does at the image border: many
+    /// vertices and edges then lie on the walls, collinear with each other.
+    pub wall: bool,
 }
 
 /// Draws a target for vertex `v`: small, medium, toward another vertex (topology events),
@@ -365,8 +368,10 @@ pub fn draw_target(set: &ContourSet, v: u32, rng: &mut Rng, mix: MoveMix) -> Poi
     if mix.lattice {
         q = Point::new(q.x.round(), q.y.round());
     }
-    let d = set.domain().expand(10.0);
-    Point::new(q.x.clamp(d.min.x, d.max.x), q.y.clamp(d.min.y, d.max.y))
+    if mix.wall {
+        return set.domain().clamp(q);
+    }
+    set.domain().expand(10.0).clamp(q)
 }
 
 /// Builds a set of `k` star-shaped outer rings on a 3×3 layout, some with a hole.

@@ -3,7 +3,7 @@
 
 use crate::evolution::{Evolver, Params, Polarity, Shape};
 use crate::geometry::Point;
-use crate::io::{load_image, write_atomic, Outputs};
+use crate::io::{load_image, OutputFiles, Outputs};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -167,10 +167,16 @@ fn bad(message: impl Into<String>) -> Failure {
 pub fn init_shapes(a: &SegmentArgs, width: usize, height: usize) -> Result<Vec<Shape>, Failure> {
     let (w, h) = (width as f64, height as f64);
     let mut shapes = Vec::new();
+    let diagonal = w.hypot(h);
     for &(x, y, r) in &a.seeds {
         if !(0.0..=w).contains(&x) || !(0.0..=h).contains(&y) {
             return Err(bad(format!(
                 "seed {x},{y} lies outside the {width}×{height} image"
+            )));
+        }
+        if r > diagonal {
+            return Err(bad(format!(
+                "seed radius {r} is larger than the image's diagonal ({diagonal:.0} px)"
             )));
         }
         shapes.push(Shape::Disk {
@@ -242,46 +248,34 @@ pub fn params_for(a: &SegmentArgs) -> Result<Params, Failure> {
     Ok(p)
 }
 
-/// Output files as (path, bytes) once the run is done.
-fn render(a: &SegmentArgs, out: &Outputs) -> Vec<(PathBuf, Vec<u8>)> {
-    let mut files = Vec::new();
-    if let Some(p) = &a.json {
-        files.push((p.clone(), out.json().into_bytes()));
-    }
-    if let Some(p) = &a.mask {
-        files.push((p.clone(), out.mask_png()));
-    }
-    if let Some(p) = &a.svg {
-        files.push((p.clone(), out.svg().into_bytes()));
-    }
-    if let Some(p) = &a.geojson {
-        files.push((p.clone(), out.geojson().into_bytes()));
-    }
-    if let Some(p) = &a.csv {
-        files.push((p.clone(), out.csv().into_bytes()));
-    }
-    files
+/// The output paths a segment command asks for, in a fixed order.
+fn output_paths(a: &SegmentArgs) -> Vec<&Path> {
+    [&a.json, &a.mask, &a.svg, &a.geojson, &a.csv]
+        .into_iter()
+        .flatten()
+        .map(PathBuf::as_path)
+        .collect()
 }
 
-fn check_writable(path: &Path) -> Result<(), Failure> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    if !dir.is_dir() {
-        return Err(bad(format!(
-            "cannot write {}: folder {} does not exist",
-            path.display(),
-            dir.display()
-        )));
+/// The outputs' bytes once the run is done, in the order of [`output_paths`].
+fn render(a: &SegmentArgs, out: &Outputs) -> Vec<Vec<u8>> {
+    let mut files = Vec::new();
+    if a.json.is_some() {
+        files.push(out.json().into_bytes());
     }
-    if path.is_dir() {
-        return Err(bad(format!(
-            "cannot write {}: it is a folder",
-            path.display()
-        )));
+    if a.mask.is_some() {
+        files.push(out.mask_png());
     }
-    Ok(())
+    if a.svg.is_some() {
+        files.push(out.svg().into_bytes());
+    }
+    if a.geojson.is_some() {
+        files.push(out.geojson().into_bytes());
+    }
+    if a.csv.is_some() {
+        files.push(out.csv().into_bytes());
+    }
+    files
 }
 
 /// Loads the image and evolves the contours to the end; returns the evolver and the
@@ -308,31 +302,34 @@ fn outputs(ev: &Evolver, width: usize, height: usize) -> Outputs<'_> {
     }
 }
 
+/// Writes a line to stderr; a full or closed stderr loses the line, never the run.
+pub fn note(line: &str) {
+    let _ = writeln!(std::io::stderr().lock(), "topocontour: {line}");
+}
+
 /// Runs `segment` and writes its outputs; returns the finished evolver.
 pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
-    for p in [&a.json, &a.mask, &a.svg, &a.geojson, &a.csv]
-        .into_iter()
-        .flatten()
-    {
-        check_writable(p)?;
-    }
+    // Every output is checked, and its temporary created, before any work.
+    let files = OutputFiles::prepare(Some(&a.image), &output_paths(a)).map_err(|e| bad(e.to_string()))?;
     let (ev, w, h) = evolve(a)?;
     let out = outputs(&ev, w, h);
     if out.held > 0 {
         // The user asked for fixed topology; say where it mattered.
-        eprintln!(
-            "topocontour: note: mode {} kept the initial topology ({} contours); fronts were held apart at {} places where adaptive mode would merge, split or close holes",
+        note(&format!(
+            "note: mode {} kept the initial topology ({} contours); fronts were held apart at {} places where adaptive mode would merge, split or close holes",
             out.mode,
             ev.contours().contour_count(),
             out.held
-        );
+        ));
     }
-    let files = render(a, &out);
-    // Everything is rendered before the first file is written.
-    for (path, bytes) in files {
-        write_atomic(&path, &bytes)
-            .map_err(|e| bad(format!("cannot write {}: {e}", path.display())))?;
+    if !out.converged {
+        note(&format!(
+            "note: the contours had not settled after {} frames (limit {}); the result is where they stopped",
+            out.frames,
+            ev.params().max_frames
+        ));
     }
+    files.commit(render(a, &out)).map_err(|e| bad(e.to_string()))?;
     Ok(ev)
 }
 

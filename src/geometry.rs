@@ -146,6 +146,14 @@ impl Aabb {
     pub fn contains(&self, p: Point) -> bool {
         p.x >= self.min.x && p.x <= self.max.x && p.y >= self.min.y && p.y <= self.max.y
     }
+    /// The point of the box nearest to `p` (`p` itself when inside).
+    #[inline]
+    pub fn clamp(&self, p: Point) -> Point {
+        Point::new(
+            fmin(fmax(p.x, self.min.x), self.max.x),
+            fmin(fmax(p.y, self.min.y), self.max.y),
+        )
+    }
 }
 
 /// How two closed segments meet.

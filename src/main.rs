@@ -1,7 +1,8 @@
 //! The `topocontour` binary: the desktop app by default, headless subcommands otherwise.
 
 use clap::Parser;
-use topocontour::cli::{bench, segment, Cli, Command, Failure};
+use std::io::Write;
+use topocontour::cli::{bench, note, segment, Cli, Command, Failure};
 
 #[cfg(feature = "gui")]
 fn open_app(image: Option<std::path::PathBuf>) -> Result<(), Failure> {
@@ -50,9 +51,33 @@ fn keep_freed_memory() {
 #[cfg(not(all(target_os = "linux", target_env = "gnu")))]
 fn keep_freed_memory() {}
 
+/// A usage error as one line: clap's message spans 3–7 lines (the error with its
+/// details, then usage and tips after a blank line); scripts read one.
+fn usage_line(e: &clap::Error) -> String {
+    let rendered = e.to_string();
+    let head: Vec<&str> = rendered
+        .lines()
+        .take_while(|l| !l.trim().is_empty())
+        .map(str::trim)
+        .collect();
+    let text = head.join(" ");
+    format!("{} (see --help)", text.trim_start_matches("error: "))
+}
+
 fn main() {
     keep_freed_memory();
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => {
+            // --help and --version: the text on stdout; a closed stdout loses it quietly.
+            let _ = write!(std::io::stdout().lock(), "{e}");
+            std::process::exit(0);
+        }
+        Err(e) => {
+            note(&usage_line(&e));
+            std::process::exit(2);
+        }
+    };
     let result = match &cli.command {
         // The finished evolver is not dropped: the process ends right after.
         Some(Command::Segment(a)) => segment(a).map(std::mem::forget),
@@ -60,7 +85,7 @@ fn main() {
         None => open_app(cli.image.clone()),
     };
     if let Err(f) = result {
-        eprintln!("topocontour: {}", f.message);
+        note(&f.message);
         std::process::exit(f.code);
     }
 }

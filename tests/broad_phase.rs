@@ -197,7 +197,7 @@ proptest! {
             .map(|k| random_rings_in(&mut Rng(seed), rings, 6.0, k))
             .collect();
         let mut rng = Rng(seed ^ 0x4A5B);
-        let mix = MoveMix { lattice: seed % 3 == 0, broad: BroadPhaseKind::Bins };
+        let mix = MoveMix { lattice: seed % 3 == 0, broad: BroadPhaseKind::Bins, wall: seed % 4 == 1 };
         for step in 0..400 {
             if sets[0].vertex_count() < 12 {
                 break;

@@ -191,6 +191,7 @@ fn preserving_moves_never_change_topology() {
                 MoveMix {
                     lattice: seed % 2 == 0,
                     broad: BroadPhaseKind::Bins,
+                    wall: seed % 3 == 0,
                 },
             );
             set.move_vertex_preserving(v, to, 0.1).unwrap();

@@ -20,9 +20,9 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: CASES, failure_persistence: None, ..ProptestConfig::default() })]
 
     #[test]
-    fn random_moves_keep_rings_correct(seed in any::<u64>(), rings in 1usize..7, lattice in proptest::bool::weighted(0.3), hash in proptest::bool::weighted(0.3)) {
+    fn random_moves_keep_rings_correct(seed in any::<u64>(), rings in 1usize..7, lattice in proptest::bool::weighted(0.3), hash in proptest::bool::weighted(0.3), wall in proptest::bool::weighted(0.3)) {
         let broad = if hash { BroadPhaseKind::Hash } else { BroadPhaseKind::Bins };
-        let r = run_random_moves(seed, rings, MOVES_PER_CASE, MoveMix { lattice, broad });
+        let r = run_random_moves(seed, rings, MOVES_PER_CASE, MoveMix { lattice, broad, wall });
         prop_assert!(r.is_ok(), "{}", r.unwrap_err());
     }
 }
@@ -49,6 +49,7 @@ fn ten_million_random_moves() {
                 } else {
                     BroadPhaseKind::Hash
                 },
+                wall: i % 5 == 2,
             },
         )
         .unwrap_or_else(|e| panic!("{e}"));

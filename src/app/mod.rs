@@ -9,7 +9,7 @@ mod panels;
 use crate::contours::BroadPhaseKind;
 use crate::evolution::{Evolver, Field, ForceWeights, Mode, Params, Polarity, Shape};
 use crate::geometry::Point;
-use crate::io::{load_image, write_atomic, Outputs};
+use crate::io::{load_image, OutputFiles, Outputs};
 use crate::topology::TopologyEvent;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -248,6 +248,8 @@ impl Run {
 /// The whole app state.
 pub struct TopoApp {
     pub image_name: String,
+    /// The file the image came from (none for the bundled sample): exports never replace it.
+    pub image_path: Option<PathBuf>,
     pub image: Option<Arc<Field>>,
     texture: Option<egui::TextureHandle>,
     texture_contrast: (f32, f32),
@@ -276,6 +278,7 @@ impl Default for TopoApp {
     fn default() -> Self {
         TopoApp {
             image_name: String::new(),
+            image_path: None,
             image: None,
             texture: None,
             texture_contrast: (0.0, 1.0),
@@ -298,24 +301,11 @@ impl Default for TopoApp {
     }
 }
 
-/// Decodes image bytes (the bundled sample) into a field.
-fn field_from_bytes(bytes: &[u8]) -> Result<Field, String> {
-    let img = image::load_from_memory(bytes)
-        .map_err(|e| e.to_string())?
-        .to_luma16();
-    let (w, h) = (img.width() as usize, img.height() as usize);
-    Ok(Field::new(
-        w,
-        h,
-        img.as_raw().iter().map(|&v| v as f32 / 65535.0).collect(),
-    ))
-}
-
 impl TopoApp {
     /// The app with the bundled sample loaded and a wrap rectangle ready.
     pub fn with_sample() -> Self {
         let mut app = TopoApp::default();
-        let field = field_from_bytes(SAMPLE_PNG).expect("bundled sample decodes");
+        let field = crate::io::decode_image(SAMPLE_PNG, "cells.png").expect("bundled sample decodes");
         app.set_image(field, "cells.png (sample)".into());
         app.apply_now(Command::WrapBorder(6.0));
         app
@@ -335,6 +325,7 @@ impl TopoApp {
 
     fn set_image(&mut self, field: Field, name: String) {
         self.image = Some(Arc::new(field));
+        self.image_path = None;
         self.image_name = name;
         self.texture = None;
         self.shapes.clear();
@@ -412,12 +403,12 @@ impl TopoApp {
         }
         let t = std::time::Instant::now();
         for _ in 0..n {
-            let b_done = self.run_b.as_ref().is_none_or(|b| b.evolver.is_converged());
-            if run.evolver.is_converged() && b_done {
+            let b_done = self.run_b.as_ref().is_none_or(|b| b.evolver.is_finished());
+            if run.evolver.is_finished() && b_done {
                 self.playing = false;
                 break;
             }
-            if !run.evolver.is_converged() {
+            if !run.evolver.is_finished() {
                 let rec = run.step();
                 for &e in &rec.events {
                     self.log.push((rec.index, e));
@@ -470,6 +461,7 @@ impl TopoApp {
                         .unwrap_or_default();
                     self.settings.last_dir = p.parent().map(Path::to_path_buf);
                     self.set_image(f, name);
+                    self.image_path = Some(p);
                     self.error = None;
                 }
                 Err(e) => self.error = Some(e.to_string()),
@@ -540,7 +532,7 @@ impl TopoApp {
             Command::StepToEvent => {
                 for _ in 0..5000 {
                     self.step_frames(1);
-                    let done = self.run.as_ref().is_none_or(|r| r.evolver.is_converged());
+                    let done = self.run.as_ref().is_none_or(|r| r.evolver.is_finished());
                     if done || self.shown_record().is_some_and(|r| !r.events.is_empty()) {
                         break;
                     }
@@ -626,7 +618,9 @@ impl TopoApp {
             ExportKind::Mask => out.mask_png(),
             ExportKind::Csv => out.csv().into_bytes(),
         };
-        write_atomic(path, &bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))
+        OutputFiles::prepare(self.image_path.as_deref(), &[path])
+            .and_then(|f| f.commit(vec![bytes]))
+            .map_err(|e| e.to_string())
     }
 
     /// Advances playback by the time since the last frame.

@@ -9,6 +9,14 @@
 //! three frames — or, when noise keeps vertices chattering while the area stays put, after
 //! 40 frames (on a coarse level the finer one will settle them).
 //!
+//! The image rectangle is a wall: every target a vertex is sent to is first clamped to
+//! [0, W] × [0, H], then moved with `move_vertex` as any other target, so the motion
+//! region stays exact and the topology core needs no special case. A vertex pushed
+//! against the wall slides along it; an object cut by the border ends with its contour
+//! running along the border. Initial shapes are clipped to the rectangle the same way.
+//! Only a run that reached a level-0 equilibrium is `converged`: one that stopped at
+//! `max_frames` or at the frame cap with areas still drifting is only finished.
+//!
 //! Choices: vertices that stayed still for a while are only revisited every eighth frame
 //! unless a neighbour moves (the image does not change, so a still vertex among still
 //! neighbours feels the same forces), so a long growth along a spiral costs what its tip
@@ -114,6 +122,8 @@ impl Default for Params {
 pub enum EvolveError {
     #[error("the initialisation is empty: give at least one seed, rectangle or polygon")]
     EmptyInit,
+    #[error("a shape of the initialisation is not usable: {0}")]
+    BadShape(String),
     #[error("parameter {name} must be {what}, got {value}")]
     BadParameter {
         name: &'static str,
@@ -164,6 +174,10 @@ pub struct Evolver {
     /// Per-contour areas (sorted by id) after each of the last frames of this level.
     areas: Vec<Vec<(u32, f64)>>,
     converged: bool,
+    /// Stopped without converging: the finest level hit its frame cap.
+    stopped: bool,
+    /// The image rectangle: the wall no vertex crosses.
+    bounds: Aabb,
     /// Per vertex id: frames since it last moved noticeably (saturating).
     still: Vec<u8>,
     /// Per vertex: the sign of the image force last time, and the share of the step it
@@ -184,6 +198,7 @@ impl Evolver {
         if init.is_empty() {
             return Err(EvolveError::EmptyInit);
         }
+        check_shapes(init, image.width, image.height)?;
         let pyramid = std::sync::Arc::new(Pyramid::new(image, params.coarsest_side, 4));
         let level = pyramid.levels.len() - 1;
         let fine = &pyramid.levels[0].image;
@@ -202,7 +217,8 @@ impl Evolver {
         for shape in init {
             // Overlapping shapes: a smaller copy still seeds the region; growth joins them.
             for f in [1.0, 0.5, 0.25] {
-                if set.add_ring(&shape.scaled(f).ring(spacing * 1.5)).is_ok() {
+                let ring = shape.scaled(f).ring_within(spacing * 1.5, &domain);
+                if ring.len() >= 3 && set.add_ring(&ring).is_ok() {
                     break;
                 }
             }
@@ -235,6 +251,8 @@ impl Evolver {
             level_frames: 0,
             areas: Vec::new(),
             converged: false,
+            stopped: false,
+            bounds: domain,
             still: Vec::new(),
             last_sign: Vec::new(),
             gain: Vec::new(),
@@ -332,8 +350,14 @@ impl Evolver {
     pub fn level(&self) -> usize {
         self.level
     }
+    /// The run reached an equilibrium on the finest level (areas steady).
     pub fn is_converged(&self) -> bool {
         self.converged
+    }
+    /// Nothing more will happen: converged, stopped at the frame cap of the finest level,
+    /// or out of frames. A finished run need not be converged.
+    pub fn is_finished(&self) -> bool {
+        self.converged || self.stopped || self.frame >= self.params.max_frames
     }
     pub fn params(&self) -> &Params {
         &self.params
@@ -411,15 +435,14 @@ impl Evolver {
                 d = d * (max_step / len);
             }
             let before = events.len();
+            let to = self.bounds.clamp(x + d);
             let moved = if preserve {
-                self.set
-                    .move_vertex_preserving(v, x + d, gap)
-                    .unwrap_or(0.0)
+                self.set.move_vertex_preserving(v, to, gap).unwrap_or(0.0)
             } else {
-                try_move(&mut self.set, v, x + d, &mut events)
+                try_move(&mut self.set, v, to, &mut events)
             };
             if events.len() > before {
-                motions.push([pp, x, pn, x + d]);
+                motions.push([pp, x, pn, to]);
             }
             if moved > 0.05 * scale {
                 active += 1;
@@ -493,13 +516,14 @@ impl Evolver {
         // Contours chattering in noise without going anywhere: refine, or stop.
         let stalled =
             self.level_frames >= STALL_FRAMES && steady(if self.level > 0 { 0.01 } else { 0.003 });
-        if self.calm >= 3
-            || stalled
-            || self.level_frames >= LEVEL_FRAMES_CAP
-            || self.set.vertex_count() == 0
-        {
-            if self.level == 0 || self.set.vertex_count() == 0 {
+        let capped = self.level_frames >= LEVEL_FRAMES_CAP;
+        if self.calm >= 3 || stalled || capped || self.set.vertex_count() == 0 {
+            if self.set.vertex_count() == 0 || (self.level == 0 && !capped) {
                 self.converged = true;
+            } else if self.level == 0 {
+                // The cap ends the run; it converged only if the areas stopped drifting.
+                self.converged = steady(0.003);
+                self.stopped = !self.converged;
             } else {
                 self.set_level(self.level - 1);
             }
@@ -536,7 +560,7 @@ impl Evolver {
             }
             return;
         }
-        while !self.converged && self.frame < self.params.max_frames {
+        while !self.is_finished() {
             self.step();
         }
     }
@@ -678,6 +702,30 @@ fn check_params(p: &Params) -> Result<(), EvolveError> {
     Ok(())
 }
 
+/// Shapes with finite coordinates and disks no larger than the image's diagonal (a ring
+/// has a vertex every pixel or so: a huge radius would be a huge ring, clipped after).
+fn check_shapes(init: &[Shape], width: usize, height: usize) -> Result<(), EvolveError> {
+    let diagonal = (width as f64).hypot(height as f64);
+    for s in init {
+        let finite = match s {
+            Shape::Disk { center, radius } => {
+                if !(*radius > 0.0 && *radius <= diagonal) {
+                    return Err(EvolveError::BadShape(format!(
+                        "disk radius {radius} is not in (0, {diagonal:.0}], the image's diagonal"
+                    )));
+                }
+                center.x.is_finite() && center.y.is_finite()
+            }
+            Shape::Rect { min, max } => [min.x, min.y, max.x, max.y].iter().all(|v| v.is_finite()),
+            Shape::Polygon(pts) => pts.iter().all(|p| p.x.is_finite() && p.y.is_finite()),
+        };
+        if !finite {
+            return Err(EvolveError::BadShape(format!("{s:?} has a coordinate that is not finite")));
+        }
+    }
+    Ok(())
+}
+
 /// Medians of the image under the seeds (object) and along the inside of rectangles
 /// (background, for a wrap).
 fn hints(field: &Field, init: &[Shape]) -> (Option<f64>, Option<f64>) {
@@ -686,18 +734,20 @@ fn hints(field: &Field, init: &[Shape]) -> (Option<f64>, Option<f64>) {
     for s in init {
         match s {
             Shape::Disk { center, radius } => {
+                // Pixel centres in the disk, the loops clipped to the image: the cost is
+                // the disk's part in the image, whatever the radius.
                 let r = radius.max(1.0);
-                let k = r.ceil() as i64;
-                for dy in -k..=k {
-                    for dx in -k..=k {
-                        let (x, y) = (center.x + dx as f64, center.y + dy as f64);
-                        if ((dx * dx + dy * dy) as f64) <= r * r
-                            && x >= 0.0
-                            && y >= 0.0
-                            && (x as usize) < field.width
-                            && (y as usize) < field.height
-                        {
-                            obj.push(field.at(x as usize, y as usize) as f64);
+                let span = |c: f64, n: usize| {
+                    let lo = (c - r - 0.5).ceil().clamp(0.0, n as f64) as usize;
+                    let hi = (c + r - 0.5).floor().clamp(-1.0, n as f64 - 1.0);
+                    lo..(hi + 1.0) as usize
+                };
+                for y in span(center.y, field.height) {
+                    let dy = y as f64 + 0.5 - center.y;
+                    for x in span(center.x, field.width) {
+                        let dx = x as f64 + 0.5 - center.x;
+                        if dx * dx + dy * dy <= r * r {
+                            obj.push(field.at(x, y) as f64);
                         }
                     }
                 }

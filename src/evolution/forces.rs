@@ -74,7 +74,10 @@ impl IntensityModel {
 
     /// Learns the model: Otsu's split of the image gives the dark and bright class
     /// means; `object_hint` / `background_hint` (medians under the initialisation)
-    /// replace them where they lie on the expected side.
+    /// replace them where they lie on the expected side. A model with less contrast than
+    /// [`MIN_CONTRAST`] (a flat image, or hints that contradict the split) keeps the
+    /// background the user showed and puts the object [`MIN_CONTRAST`] beyond it, so that
+    /// a wrap over nothing collapses instead of taking the image as object.
     pub fn learn(
         image: &Field,
         polarity: Polarity,
@@ -86,20 +89,38 @@ impl IntensityModel {
             Polarity::Dark => (dark, bright),
             Polarity::Bright => (bright, dark),
         };
-        let t = 0.5 * (dark + bright);
-        let on_object_side = |v: f64| match polarity {
-            Polarity::Dark => v < t,
-            Polarity::Bright => v > t,
+        let sign = match polarity {
+            Polarity::Dark => -1.0,
+            Polarity::Bright => 1.0,
         };
+        let t = 0.5 * (dark + bright);
+        let on_object_side = |v: f64| sign * (v - t) > 0.0;
         if let Some(o) = object_hint.filter(|&o| on_object_side(o)) {
             object = o;
         }
-        if let Some(b) = background_hint.filter(|&b| !on_object_side(b)) {
-            background = b;
+        match background_hint {
+            Some(b) if !on_object_side(b) => background = b,
+            Some(b) if object_hint.is_none() => {
+                // The band the user wrapped reads as object: there is no object brighter
+                // (darker) than it that Otsu could see.
+                background = b;
+            }
+            _ => {}
+        }
+        if sign * (object - background) < MIN_CONTRAST {
+            if object_hint.is_some() && background_hint.is_none() {
+                background = object - sign * MIN_CONTRAST;
+            } else {
+                object = background + sign * MIN_CONTRAST;
+            }
         }
         IntensityModel { object, background }
     }
 }
+
+/// Smallest object–background difference a model may have (intensities in [0, 1]): two
+/// 8-bit grey levels and a half.
+pub const MIN_CONTRAST: f64 = 0.01;
 
 /// Means of the two classes of Otsu's threshold over a 256-bin histogram.
 pub fn otsu_means(image: &Field) -> (f64, f64) {

@@ -2,7 +2,7 @@
 //! border), any rectangle, a polygon. Each becomes an outer ring with vertices about
 //! `spacing` apart.
 
-use crate::geometry::{signed_area, Point};
+use crate::geometry::{signed_area, Aabb, Point};
 
 /// One shape of an initialisation, in image pixels.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -44,6 +44,30 @@ impl Shape {
         }
     }
 
+    /// [`Shape::ring`] clipped to the box `within` (Sutherland–Hodgman; exact for disks
+    /// and rectangles, which are convex), with edges at most `spacing` and no repeated
+    /// points. Empty when the shape lies outside the box.
+    pub fn ring_within(&self, spacing: f64, within: &Aabb) -> Vec<Point> {
+        let ring = self.ring(spacing);
+        if ring.iter().all(|&p| within.contains(p)) {
+            return ring;
+        }
+        let clipped = clip_to_box(&ring, within);
+        let mut out: Vec<Point> = Vec::with_capacity(clipped.len());
+        for p in densify(&clipped, spacing) {
+            if out.last().is_none_or(|&q| q.dist(p) > 1e-9) {
+                out.push(p);
+            }
+        }
+        while out.len() > 1 && out[0].dist(out[out.len() - 1]) <= 1e-9 {
+            out.pop();
+        }
+        if out.len() < 3 || signed_area(&out).abs() < 1e-9 {
+            return Vec::new();
+        }
+        out
+    }
+
     /// A point inside the shape (its centre, for disks and rectangles).
     pub fn center(&self) -> Point {
         match self {
@@ -71,6 +95,34 @@ impl Shape {
             Shape::Polygon(pts) => Shape::Polygon(pts.iter().map(|&p| s(p)).collect()),
         }
     }
+}
+
+/// The part of a closed polygon inside `b`, one half-plane at a time.
+fn clip_to_box(pts: &[Point], b: &Aabb) -> Vec<Point> {
+    // Each side as a signed distance, inside ≥ 0.
+    let sides: [fn(Point, &Aabb) -> f64; 4] = [
+        |p, b| p.x - b.min.x,
+        |p, b| b.max.x - p.x,
+        |p, b| p.y - b.min.y,
+        |p, b| b.max.y - p.y,
+    ];
+    let mut poly = pts.to_vec();
+    for dist in sides {
+        let input = std::mem::take(&mut poly);
+        let n = input.len();
+        for i in 0..n {
+            let (a, c) = (input[i], input[(i + 1) % n]);
+            let (da, dc) = (dist(a, b), dist(c, b));
+            if da >= 0.0 {
+                poly.push(a);
+            }
+            if (da >= 0.0) != (dc >= 0.0) {
+                // Rounding may put the crossing a hair outside: clamp.
+                poly.push(b.clamp(a.lerp(c, da / (da - dc))));
+            }
+        }
+    }
+    poly
 }
 
 /// Inserts points so that no edge of the closed polygon is longer than `spacing`.

@@ -1,43 +1,10 @@
-//! Exports of a segmentation: JSON (the CLI contract), mask PNG, SVG, GeoJSON, CSV.
-//! Every file is written to a temporary sibling first and renamed into place, so a
-//! failed run never leaves a half-written output.
-//!
-//! The temporary file is not fsynced before the rename: readers, and later runs, see the
-//! old file or the whole new one either way; only a power cut right after the rename
-//! could leave an empty file on some file systems. We choose the batch user's speed: an
-//! fsync per output costs 3–4 ms on this VM's disk, more than segmenting a small image.
+//! Exports of a segmentation: JSON (the CLI contract), mask PNG, SVG, GeoJSON, CSV, as
+//! bytes in memory; [`super::atomic`] writes them.
 
 use crate::contours::{ContourId, ContourSet};
 use crate::evolution::{regions, FrameEvent};
 use crate::geometry::Point;
 use serde_json::json;
-use std::io::Write;
-use std::path::Path;
-
-/// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file path"))?;
-    let tmp = dir.join(format!(
-        ".{}.tmp{}",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}
 
 /// The finished segmentation, ready to export.
 pub struct Outputs<'a> {

@@ -1,5 +1,13 @@
 //! Loads PNG, JPEG and TIFF (8- or 16-bit, gray or colour) into a [`Field`] of luminance
 //! in [0, 1], with the `image` crate.
+//!
+//! Only regular files are read, and the type is checked on the opened file without
+//! blocking (a FIFO, a device or a socket named as the image is refused at once, never
+//! read); a file larger than the largest image could need is refused before it is read.
+//! A header that claims more pixels than the file's bytes can encode is refused before
+//! decoding (no codec packs more than about a thousand pixels into a byte).
+//! A JPEG that ends before its end-of-image marker is refused: the decoder would fill
+//! the missing part silently and the contours would follow the filler.
 
 use crate::evolution::Field;
 use std::path::Path;
@@ -22,6 +30,12 @@ pub enum LoadError {
         width: u32,
         height: u32,
     },
+    #[error("{path} is not a regular file")]
+    NotAFile { path: String },
+    #[error("{path} is too large ({bytes} bytes; an image of at most {MAX_PIXELS} pixels needs at most {MAX_FILE_BYTES})")]
+    FileTooLarge { path: String, bytes: u64 },
+    #[error("{path} is truncated: the JPEG data ends before its end-of-image marker")]
+    Truncated { path: String },
     #[error("{path} is too large ({width}×{height}; at most {MAX_PIXELS} pixels)")]
     TooLarge {
         path: String,
@@ -30,24 +44,69 @@ pub enum LoadError {
     },
 }
 
+/// Largest file accepted: an uncompressed 16-bit RGBA image of [`MAX_PIXELS`] pixels and
+/// room for its headers.
+pub const MAX_FILE_BYTES: u64 = MAX_PIXELS * 8 + (1 << 20);
+
 /// Reads an image file as luminance.
 pub fn load_image(path: &Path) -> Result<Field, LoadError> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| LoadError::Io {
+    let io = |source| LoadError::Io {
         path: name.clone(),
         source,
-    })?;
+    };
+    let file = open_regular(path).map_err(io)?;
+    let meta = file.metadata().map_err(io)?;
+    if !meta.is_file() {
+        return Err(LoadError::NotAFile { path: name });
+    }
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(LoadError::FileTooLarge {
+            path: name,
+            bytes: meta.len(),
+        });
+    }
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    std::io::Read::read_to_end(&mut std::io::Read::take(file, MAX_FILE_BYTES + 1), &mut bytes)
+        .map_err(io)?;
+    decode_image(&bytes, &name)
+}
+
+/// Opens without blocking: on a FIFO a plain open waits for a writer.
+fn open_regular(path: &Path) -> std::io::Result<std::fs::File> {
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    std::os::unix::fs::OpenOptionsExt::custom_flags(&mut options, libc::O_NONBLOCK);
+    options.open(path)
+}
+
+/// Decodes image file bytes as luminance; `name` is the file's name in messages.
+pub fn decode_image(bytes: &[u8], name: &str) -> Result<Field, LoadError> {
     let decode_err = |e: &dyn std::fmt::Display| LoadError::Decode {
-        path: name.clone(),
+        path: name.to_string(),
         reason: e.to_string(),
     };
-    let reader = || image::ImageReader::new(std::io::Cursor::new(&bytes)).with_guessed_format();
+    let reader = || image::ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format();
+    let format = reader().map_err(|e| decode_err(&e))?.format();
     // The header first: size limits before any pixel memory is allocated.
     let (width, height) = reader()
         .map_err(|e| decode_err(&e))?
         .into_dimensions()
         .map_err(|e| decode_err(&e))?;
-    check_size(&name, width, height)?;
+    check_size(name, width, height)?;
+    // No codec we read packs more than about a thousand pixels into a byte (deflate's
+    // limit is 1032:1): a header claiming far more is a lie or a bomb, refused before
+    // the decoder allocates for it.
+    if width as u64 * height as u64 > 4096 * bytes.len() as u64 + (1 << 16) {
+        return Err(decode_err(&format!(
+            "the header claims {width}×{height} pixels, more than {} bytes can hold",
+            bytes.len()
+        )));
+    }
+    if format == Some(image::ImageFormat::Jpeg) && !jpeg_is_complete(bytes) {
+        return Err(LoadError::Truncated { path: name.into() });
+    }
     let mut full = reader().map_err(|e| decode_err(&e))?;
     full.no_limits();
     let img = full.decode().map_err(|e| decode_err(&e))?;
@@ -55,6 +114,31 @@ pub fn load_image(path: &Path) -> Result<Field, LoadError> {
     let luma = img.to_luma16();
     let data = luma.as_raw().iter().map(|&v| v as f32 / 65535.0).collect();
     Ok(Field::new(width as usize, height as usize, data))
+}
+
+/// Whether a JPEG has an end-of-image marker after its first scan. Marker segments are
+/// walked up to the first start-of-scan (a thumbnail in an APP segment has an EOI of its
+/// own); in the entropy-coded data that follows, 0xFF is always stuffed or a marker.
+fn jpeg_is_complete(b: &[u8]) -> bool {
+    let mut i = 2; // after SOI
+    while i + 4 <= b.len() {
+        if b[i] != 0xFF {
+            return false;
+        }
+        let marker = b[i + 1];
+        if marker == 0xFF {
+            i += 1; // fill byte
+            continue;
+        }
+        let len = u16::from_be_bytes([b[i + 2], b[i + 3]]) as usize;
+        if marker == 0xDA {
+            return b[i + 2 + len.min(b.len() - i - 2)..]
+                .windows(2)
+                .any(|w| w == [0xFF, 0xD9]);
+        }
+        i += 2 + len;
+    }
+    false
 }
 
 fn check_size(path: &str, width: u32, height: u32) -> Result<(), LoadError> {

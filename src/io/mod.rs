@@ -1,7 +1,9 @@
 //! Image loading and exports (DESIGN layer 5).
 
+pub mod atomic;
 pub mod export;
 pub mod load;
 
-pub use export::{write_atomic, Outputs};
-pub use load::{load_image, LoadError};
+pub use atomic::{write_atomic, OutputError, OutputFiles};
+pub use export::Outputs;
+pub use load::{decode_image, load_image, LoadError};
