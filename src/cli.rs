@@ -1,7 +1,7 @@
 //! The headless command line: `topocontour segment …` with the contract of DESIGN.md,
 //! and `topocontour bench …` that times the whole pipeline in-process.
 
-use crate::evolution::{Evolver, Params, Polarity, Shape};
+use crate::evolution::{find_seeds, Evolver, Field, Params, Polarity, Shape};
 use crate::geometry::Point;
 use crate::io::{load_image, OutputFiles, Outputs};
 use clap::{Args, Parser, Subcommand, ValueEnum};
@@ -37,6 +37,15 @@ pub enum ObjectArg {
     Bright,
 }
 
+impl ObjectArg {
+    fn name(self) -> &'static str {
+        match self {
+            ObjectArg::Dark => "dark",
+            ObjectArg::Bright => "bright",
+        }
+    }
+}
+
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModeArg {
     /// Topology adapts: contours split, merge, make and lose holes (seed 003).
@@ -58,6 +67,10 @@ pub struct SegmentArgs {
     /// A rectangle MARGIN pixels inside the image border, to shrink-wrap everything.
     #[arg(long, value_name = "MARGIN", allow_negative_numbers = true)]
     pub wrap: Option<f64>,
+    /// One seed per object, found by the tool (distance-transform maxima of the local
+    /// threshold); adds to any other shapes.
+    #[arg(long)]
+    pub auto_seeds: bool,
     /// A rectangle X0,Y0,X1,Y1.
     #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_rect)]
     pub rect: Vec<(f64, f64, f64, f64)>,
@@ -66,6 +79,13 @@ pub struct SegmentArgs {
     pub object: ObjectArg,
     #[arg(long, value_enum, default_value = "adaptive")]
     pub mode: ModeArg,
+    /// The kind of image: phase contrast treats the bright halo as background.
+    #[arg(long, value_enum, default_value = "generic")]
+    pub modality: ModalityArg,
+    /// Radius of the local intensity statistics in pixels (default: from the image's
+    /// object scale).
+    #[arg(long, value_name = "PX")]
+    pub local_radius: Option<f64>,
     /// Write contours and events as JSON.
     #[arg(long, value_name = "OUT")]
     pub json: Option<PathBuf>,
@@ -81,6 +101,9 @@ pub struct SegmentArgs {
     /// Write per-region measurements as CSV.
     #[arg(long, value_name = "OUT")]
     pub csv: Option<PathBuf>,
+    /// Write the image with the contours drawn (each object its colour) as PNG.
+    #[arg(long, value_name = "OUT.png")]
+    pub overlay: Option<PathBuf>,
     /// Stop after this many frames.
     #[arg(long, value_name = "N")]
     pub max_frames: Option<usize>,
@@ -90,6 +113,18 @@ pub struct SegmentArgs {
     /// Broad phase of the crossing search: vertex bins or staggered hashing (same result).
     #[arg(long, value_enum, default_value = "bins")]
     pub broad_phase: BroadPhaseArg,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModalityArg {
+    /// No assumption beyond the object's polarity.
+    Generic,
+    /// Bright objects on dark background, of very different brightness.
+    Fluorescence,
+    /// Dark cells with a bright halo on grey background.
+    PhaseContrast,
+    /// Objects darker or brighter than an even background.
+    Brightfield,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -207,9 +242,9 @@ pub fn init_shapes(a: &SegmentArgs, width: usize, height: usize) -> Result<Vec<S
             max: Point::new(x1, y1),
         });
     }
-    if shapes.is_empty() {
+    if shapes.is_empty() && !a.auto_seeds {
         return Err(bad(
-            "no initialisation: give --seed X,Y,R, --wrap MARGIN or --rect X0,Y0,X1,Y1",
+            "no initialisation: give --seed X,Y,R, --wrap MARGIN, --rect X0,Y0,X1,Y1 or --auto-seeds",
         ));
     }
     Ok(shapes)
@@ -227,12 +262,24 @@ pub fn params_for(a: &SegmentArgs) -> Result<Params, Failure> {
             ObjectArg::Dark => Polarity::Dark,
             ObjectArg::Bright => Polarity::Bright,
         },
+        modality: match a.modality {
+            ModalityArg::Generic => crate::evolution::Modality::Generic,
+            ModalityArg::Fluorescence => crate::evolution::Modality::Fluorescence,
+            ModalityArg::PhaseContrast => crate::evolution::Modality::PhaseContrast,
+            ModalityArg::Brightfield => crate::evolution::Modality::Brightfield,
+        },
         broad_phase: match a.broad_phase {
             BroadPhaseArg::Bins => crate::contours::BroadPhaseKind::Bins,
             BroadPhaseArg::Hash => crate::contours::BroadPhaseKind::Hash,
         },
         ..Params::default()
     };
+    if let Some(r) = a.local_radius {
+        if !(r.is_finite() && r >= 1.0) {
+            return Err(bad(format!("--local-radius must be a number ≥ 1, got {r}")));
+        }
+        p.local_radius = Some(r);
+    }
     if let Some(n) = a.max_frames {
         if n == 0 {
             return Err(bad("--max-frames must be at least 1"));
@@ -250,7 +297,7 @@ pub fn params_for(a: &SegmentArgs) -> Result<Params, Failure> {
 
 /// The output paths a segment command asks for, in a fixed order.
 fn output_paths(a: &SegmentArgs) -> Vec<&Path> {
-    [&a.json, &a.mask, &a.svg, &a.geojson, &a.csv]
+    [&a.json, &a.mask, &a.svg, &a.geojson, &a.csv, &a.overlay]
         .into_iter()
         .flatten()
         .map(PathBuf::as_path)
@@ -258,7 +305,7 @@ fn output_paths(a: &SegmentArgs) -> Vec<&Path> {
 }
 
 /// The outputs' bytes once the run is done, in the order of [`output_paths`].
-fn render(a: &SegmentArgs, out: &Outputs) -> Vec<Vec<u8>> {
+fn render(a: &SegmentArgs, out: &Outputs, image: &Field) -> Vec<Vec<u8>> {
     let mut files = Vec::new();
     if a.json.is_some() {
         files.push(out.json().into_bytes());
@@ -275,18 +322,33 @@ fn render(a: &SegmentArgs, out: &Outputs) -> Vec<Vec<u8>> {
     if a.csv.is_some() {
         files.push(out.csv().into_bytes());
     }
+    if a.overlay.is_some() {
+        files.push(out.overlay_png(image));
+    }
     files
 }
 
 /// Loads the image and evolves the contours to the end; returns the evolver and the
-/// image size.
-fn evolve(a: &SegmentArgs) -> Result<(Evolver, usize, usize), Failure> {
+/// image.
+fn evolve(a: &SegmentArgs) -> Result<(Evolver, Field), Failure> {
     let image = load_image(&a.image).map_err(|e| bad(e.to_string()))?;
-    let shapes = init_shapes(a, image.width, image.height)?;
-    let mut ev = Evolver::new(&image, &shapes, params_for(a)?).map_err(|e| bad(e.to_string()))?;
+    let mut shapes = init_shapes(a, image.width, image.height)?;
+    let params = params_for(a)?;
+    if a.auto_seeds {
+        let found = find_seeds(&image, params.polarity, params.modality);
+        if found.is_empty() && shapes.is_empty() {
+            return Err(bad(format!(
+                "--auto-seeds found no {} object in {}",
+                a.object.name(),
+                a.image.display()
+            )));
+        }
+        shapes.extend(found);
+    }
+    let mut ev = Evolver::new(&image, &shapes, params).map_err(|e| bad(e.to_string()))?;
     ev.run();
     ev.filter_clutter();
-    Ok((ev, image.width, image.height))
+    Ok((ev, image))
 }
 
 fn outputs(ev: &Evolver, width: usize, height: usize) -> Outputs<'_> {
@@ -310,9 +372,10 @@ pub fn note(line: &str) {
 /// Runs `segment` and writes its outputs; returns the finished evolver.
 pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
     // Every output is checked, and its temporary created, before any work.
-    let files = OutputFiles::prepare(Some(&a.image), &output_paths(a)).map_err(|e| bad(e.to_string()))?;
-    let (ev, w, h) = evolve(a)?;
-    let out = outputs(&ev, w, h);
+    let files =
+        OutputFiles::prepare(Some(&a.image), &output_paths(a)).map_err(|e| bad(e.to_string()))?;
+    let (ev, image) = evolve(a)?;
+    let out = outputs(&ev, image.width, image.height);
     if out.held > 0 {
         // The user asked for fixed topology; say where it mattered.
         note(&format!(
@@ -329,7 +392,9 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
             ev.params().max_frames
         ));
     }
-    files.commit(render(a, &out)).map_err(|e| bad(e.to_string()))?;
+    files
+        .commit(render(a, &out, &image))
+        .map_err(|e| bad(e.to_string()))?;
     Ok(ev)
 }
 
@@ -353,6 +418,7 @@ impl SegmentArgs {
         Ok(SegmentArgs {
             image: dir.join("image.png"),
             seeds,
+            auto_seeds: false,
             wrap: init["border_margin"].as_f64(),
             rect: Vec::new(),
             object: if init["object"] == "bright" {
@@ -361,11 +427,19 @@ impl SegmentArgs {
                 ObjectArg::Dark
             },
             mode: ModeArg::Adaptive,
+            modality: match init["modality"].as_str() {
+                Some("fluorescence") => ModalityArg::Fluorescence,
+                Some("phase-contrast") => ModalityArg::PhaseContrast,
+                Some("brightfield") => ModalityArg::Brightfield,
+                _ => ModalityArg::Generic,
+            },
             json: None,
             mask: None,
             svg: None,
             geojson: None,
             csv: None,
+            overlay: None,
+            local_radius: None,
             max_frames: None,
             min_area: None,
             broad_phase: BroadPhaseArg::Bins,
@@ -410,8 +484,8 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
         let (mut frames, mut contours) = (0, 0);
         for _ in 0..b.runs.max(1) {
             let t = std::time::Instant::now();
-            let (ev, w, h) = evolve(&args)?;
-            let out = outputs(&ev, w, h);
+            let (ev, image) = evolve(&args)?;
+            let out = outputs(&ev, image.width, image.height);
             std::hint::black_box((out.json(), out.mask_png()));
             times.push(t.elapsed().as_secs_f64() * 1e3);
             frames = ev.frames();

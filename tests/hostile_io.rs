@@ -77,13 +77,19 @@ fn a_fifo_as_input_is_refused_at_once() {
     let (d, _) = workdir("fifo-in");
     let fifo = d.join("image.png");
     mkfifo(&fifo);
-    expect_refused(&["segment", s(&fifo), "--wrap", "4", "--object", "dark"], "not a regular file");
+    expect_refused(
+        &["segment", s(&fifo), "--wrap", "4", "--object", "dark"],
+        "not a regular file",
+    );
     assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo());
 }
 
 #[test]
 fn a_device_as_input_is_refused_at_once() {
-    expect_refused(&["segment", "/dev/zero", "--wrap", "4", "--object", "dark"], "not a regular file");
+    expect_refused(
+        &["segment", "/dev/zero", "--wrap", "4", "--object", "dark"],
+        "not a regular file",
+    );
 }
 
 #[test]
@@ -104,13 +110,33 @@ fn an_output_naming_the_input_is_refused_before_anything_is_written() {
         ("--csv", hard.clone()),
     ] {
         expect_refused(
-            &["segment", s(&input), "--wrap", "4", "--object", "dark", flag, s(&out)],
+            &[
+                "segment",
+                s(&input),
+                "--wrap",
+                "4",
+                "--object",
+                "dark",
+                flag,
+                s(&out),
+            ],
             "input image",
         );
-        assert_eq!(std::fs::read(&input).unwrap(), before, "{flag} {}", out.display());
+        assert_eq!(
+            std::fs::read(&input).unwrap(),
+            before,
+            "{flag} {}",
+            out.display()
+        );
     }
-    assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
-    assert_eq!(others(&d, &[&input, &sub, &link, &hard]), Vec::<PathBuf>::new());
+    assert!(std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert_eq!(
+        others(&d, &[&input, &sub, &link, &hard]),
+        Vec::<PathBuf>::new()
+    );
 }
 
 #[test]
@@ -118,13 +144,35 @@ fn one_path_for_two_outputs_is_refused() {
     let (d, input) = workdir("twice");
     let out = d.join("out");
     expect_refused(
-        &["segment", s(&input), "--wrap", "4", "--object", "dark", "--json", s(&out), "--svg", s(&out)],
+        &[
+            "segment",
+            s(&input),
+            "--wrap",
+            "4",
+            "--object",
+            "dark",
+            "--json",
+            s(&out),
+            "--svg",
+            s(&out),
+        ],
         "two outputs",
     );
     // The same file spelled two ways.
     let other = d.join(".").join("out");
     expect_refused(
-        &["segment", s(&input), "--wrap", "4", "--object", "dark", "--json", s(&out), "--csv", s(&other)],
+        &[
+            "segment",
+            s(&input),
+            "--wrap",
+            "4",
+            "--object",
+            "dark",
+            "--json",
+            s(&out),
+            "--csv",
+            s(&other),
+        ],
         "two outputs",
     );
     assert_eq!(others(&d, &[&input]), Vec::<PathBuf>::new());
@@ -136,19 +184,49 @@ fn special_files_as_outputs_stay_special() {
     let fifo = d.join("out.json");
     mkfifo(&fifo);
     expect_refused(
-        &["segment", s(&input), "--wrap", "4", "--object", "dark", "--json", s(&fifo)],
+        &[
+            "segment",
+            s(&input),
+            "--wrap",
+            "4",
+            "--object",
+            "dark",
+            "--json",
+            s(&fifo),
+        ],
         "not a regular file",
     );
     assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo());
     for dev in ["/dev/null", "/dev/full"] {
         expect_refused(
-            &["segment", s(&input), "--wrap", "4", "--object", "dark", "--json", dev],
+            &[
+                "segment",
+                s(&input),
+                "--wrap",
+                "4",
+                "--object",
+                "dark",
+                "--json",
+                dev,
+            ],
             "not a regular file",
         );
-        assert!(std::fs::metadata(dev).unwrap().file_type().is_char_device(), "{dev}");
+        assert!(
+            std::fs::metadata(dev).unwrap().file_type().is_char_device(),
+            "{dev}"
+        );
     }
     expect_refused(
-        &["segment", s(&input), "--wrap", "4", "--object", "dark", "--svg", s(&d)],
+        &[
+            "segment",
+            s(&input),
+            "--wrap",
+            "4",
+            "--object",
+            "dark",
+            "--svg",
+            s(&d),
+        ],
         "not a regular file",
     );
     assert_eq!(others(&d, &[&input, &fifo]), Vec::<PathBuf>::new());
@@ -161,7 +239,18 @@ fn an_unwritable_second_output_leaves_no_first() {
     for second in [d.join("missing-folder/out.svg"), d.join("sub")] {
         std::fs::create_dir_all(d.join("sub")).unwrap();
         expect_refused(
-            &["segment", s(&input), "--wrap", "4", "--object", "dark", "--json", s(&first), "--svg", s(&second)],
+            &[
+                "segment",
+                s(&input),
+                "--wrap",
+                "4",
+                "--object",
+                "dark",
+                "--json",
+                s(&first),
+                "--svg",
+                s(&second),
+            ],
             "cannot write",
         );
         assert!(!first.exists());
@@ -175,10 +264,21 @@ fn huge_seed_radii_are_refused_at_once() {
     for r in ["1e6", "1e30"] {
         let t = Instant::now();
         expect_refused(
-            &["segment", s(&input), "--seed", &format!("100,100,{r}"), "--object", "dark"],
+            &[
+                "segment",
+                s(&input),
+                "--seed",
+                &format!("100,100,{r}"),
+                "--object",
+                "dark",
+            ],
             "radius",
         );
-        assert!(t.elapsed() < Duration::from_secs(1), "{r}: {:?}", t.elapsed());
+        assert!(
+            t.elapsed() < Duration::from_secs(1),
+            "{r}: {:?}",
+            t.elapsed()
+        );
     }
 }
 
@@ -188,12 +288,29 @@ fn a_seed_larger_than_the_image_is_clipped_to_it() {
     let json = d.join("out.json");
     // 400 px on a 200-odd px image: the whole image, clipped; the run ends quickly.
     let out = run_within(
-        bin().args(["segment", s(&input), "--seed", "50,50,400", "--object", "dark", "--json", s(&json)]),
+        bin().args([
+            "segment",
+            s(&input),
+            "--seed",
+            "50,50,400",
+            "--object",
+            "dark",
+            "--json",
+            s(&json),
+        ]),
         Duration::from_secs(5),
     );
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    let (w, h) = (doc["width"].as_f64().unwrap(), doc["height"].as_f64().unwrap());
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let (w, h) = (
+        doc["width"].as_f64().unwrap(),
+        doc["height"].as_f64().unwrap(),
+    );
     for c in doc["contours"].as_array().unwrap() {
         for p in c["points"].as_array().unwrap() {
             let (x, y) = (p[0].as_f64().unwrap(), p[1].as_f64().unwrap());
@@ -205,26 +322,67 @@ fn a_seed_larger_than_the_image_is_clipped_to_it() {
 #[test]
 fn a_truncated_jpeg_is_refused() {
     let (d, _) = workdir("jpeg");
-    let img = image::GrayImage::from_fn(64, 64, |x, y| image::Luma([((x * 7 + y * 3) % 256) as u8]));
+    let img =
+        image::GrayImage::from_fn(64, 64, |x, y| image::Luma([((x * 7 + y * 3) % 256) as u8]));
     let full = d.join("full.jpg");
     img.save(&full).unwrap();
     let bytes = std::fs::read(&full).unwrap();
     let cut = d.join("cut.jpg");
     std::fs::write(&cut, &bytes[..bytes.len() * 2 / 3]).unwrap();
-    expect_refused(&["segment", s(&cut), "--wrap", "4", "--object", "dark"], "truncated");
-    let out = run_within(bin().args(["segment", s(&full), "--wrap", "4", "--object", "dark"]), Duration::from_secs(5));
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    expect_refused(
+        &["segment", s(&cut), "--wrap", "4", "--object", "dark"],
+        "truncated",
+    );
+    let out = run_within(
+        bin().args(["segment", s(&full), "--wrap", "4", "--object", "dark"]),
+        Duration::from_secs(5),
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
 fn a_full_or_closed_stderr_keeps_the_exit_codes() {
     let (d, input) = workdir("stderr");
     let json = d.join("out.json");
-    let full = || std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
-    let bad = ["segment", s(&input), "--wrap", "4", "--object", "dark", "--json", "/dev/full"];
-    let ok = ["segment", s(&input), "--wrap", "4", "--object", "dark", "--mode", "preserve", "--json", s(&json)];
+    let full = || {
+        std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap()
+    };
+    let bad = [
+        "segment",
+        s(&input),
+        "--wrap",
+        "4",
+        "--object",
+        "dark",
+        "--json",
+        "/dev/full",
+    ];
+    let ok = [
+        "segment",
+        s(&input),
+        "--wrap",
+        "4",
+        "--object",
+        "dark",
+        "--mode",
+        "preserve",
+        "--json",
+        s(&json),
+    ];
     let code = |args: &[&str], stderr: Stdio| {
-        let st = bin().args(args).stdout(Stdio::null()).stderr(stderr).status().unwrap();
+        let st = bin()
+            .args(args)
+            .stdout(Stdio::null())
+            .stderr(stderr)
+            .status()
+            .unwrap();
         st.code()
     };
     assert_eq!(code(&bad, Stdio::from(full())), Some(2));
@@ -253,10 +411,27 @@ fn a_full_or_closed_stderr_keeps_the_exit_codes() {
 #[test]
 fn usage_errors_are_one_line() {
     let (_, input) = workdir("usage");
-    expect_refused(&["segment", s(&input), "--wrap", "4", "--object", "purple"], "possible values: dark, bright");
-    expect_refused(&["segment", s(&input), "--seed", "1,2", "--object", "dark"], "3 comma-separated");
+    expect_refused(
+        &["segment", s(&input), "--wrap", "4", "--object", "purple"],
+        "possible values: dark, bright",
+    );
+    expect_refused(
+        &["segment", s(&input), "--seed", "1,2", "--object", "dark"],
+        "3 comma-separated",
+    );
     expect_refused(&["segment", s(&input), "--wrap", "4"], "--object");
-    expect_refused(&["segment", s(&input), "--wrap", "4", "--object", "dark", "--frobnicate"], "frobnicate");
+    expect_refused(
+        &[
+            "segment",
+            s(&input),
+            "--wrap",
+            "4",
+            "--object",
+            "dark",
+            "--frobnicate",
+        ],
+        "frobnicate",
+    );
     expect_refused(&["frobnicate"], "frobnicate");
 }
 
@@ -276,7 +451,18 @@ fn kill_9_never_leaves_a_corrupt_output() {
         seed ^= seed << 17;
         let delay = Duration::from_micros(seed % 15_000);
         let mut child = bin()
-            .args(["segment", s(&input), "--wrap", "4", "--object", "dark", "--json", s(&json), "--mask", s(&mask)])
+            .args([
+                "segment",
+                s(&input),
+                "--wrap",
+                "4",
+                "--object",
+                "dark",
+                "--json",
+                s(&json),
+                "--mask",
+                s(&mask),
+            ])
             .stderr(Stdio::null())
             .spawn()
             .unwrap();
@@ -298,7 +484,10 @@ fn kill_9_never_leaves_a_corrupt_output() {
     // Whatever a kill left is a hidden temporary, never an output under another name.
     for p in others(&d, &[&input, &json, &mask]) {
         let name = p.file_name().unwrap().to_string_lossy().into_owned();
-        assert!(name.starts_with(".topocontour-") && name.ends_with(".tmp"), "{name}");
+        assert!(
+            name.starts_with(".topocontour-") && name.ends_with(".tmp"),
+            "{name}"
+        );
     }
 }
 
@@ -308,9 +497,22 @@ fn a_successful_run_leaves_only_its_outputs() {
     let long = "x".repeat(250);
     let json = d.join(format!("{long}.json"));
     let out = run_within(
-        bin().args(["segment", s(&input), "--wrap", "4", "--object", "dark", "--json", s(&json)]),
+        bin().args([
+            "segment",
+            s(&input),
+            "--wrap",
+            "4",
+            "--object",
+            "dark",
+            "--json",
+            s(&json),
+        ]),
         Duration::from_secs(5),
     );
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert_eq!(others(&d, &[&input, &json]), Vec::<PathBuf>::new());
 }

@@ -60,7 +60,11 @@ fn a_wrap_over_a_constant_image_collapses() {
             let set = ev.contours();
             let kept = usize::from(mode != Mode::Adaptive);
             assert!(set.contour_count() <= kept, "{mode:?} {polarity:?}");
-            assert!(set.region_area() < 100.0, "{mode:?} {polarity:?}: area {}", set.region_area());
+            assert!(
+                set.region_area() < 100.0,
+                "{mode:?} {polarity:?}: area {}",
+                set.region_area()
+            );
         }
     }
 }
@@ -84,11 +88,17 @@ fn an_object_cut_by_the_border_ends_on_it() {
         let set = ev.contours();
         assert_eq!(set.contour_count(), 1, "{mode:?}");
         let area = set.region_area();
-        assert!((area - inside).abs() < 0.03 * inside, "{mode:?}: area {area}, expected {inside}");
+        assert!(
+            (area - inside).abs() < 0.03 * inside,
+            "{mode:?}: area {area}, expected {inside}"
+        );
         // The contour runs along the border where the disk is cut.
         let id = set.contour_ids().next().unwrap();
         let on_border = set.ring_points(id).iter().filter(|p| p.x < 0.5).count();
-        assert!(on_border >= 20, "{mode:?}: {on_border} points on the border");
+        assert!(
+            on_border >= 20,
+            "{mode:?}: {on_border} points on the border"
+        );
     }
 }
 
@@ -110,7 +120,13 @@ fn a_seed_growing_over_everything_stops_at_the_wall() {
 
 #[test]
 fn a_run_out_of_frames_is_not_converged() {
-    let img = image(128, 128, |x, y| if (x - 64.0).hypot(y - 64.0) < 30.0 { 0.2 } else { 0.8 });
+    let img = image(128, 128, |x, y| {
+        if (x - 64.0).hypot(y - 64.0) < 30.0 {
+            0.2
+        } else {
+            0.8
+        }
+    });
     let params = Params {
         max_frames: 5,
         ..Params::default()
@@ -129,7 +145,10 @@ fn huge_or_non_finite_shapes_are_refused_at_once() {
             center: Point::new(32.0, 32.0),
             radius,
         };
-        assert!(Evolver::new(&img, &[disk], Params::default()).is_err(), "{radius}");
+        assert!(
+            Evolver::new(&img, &[disk], Params::default()).is_err(),
+            "{radius}"
+        );
     }
     let rect = Shape::Rect {
         min: Point::new(f64::NAN, 0.0),

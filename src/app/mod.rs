@@ -305,7 +305,8 @@ impl TopoApp {
     /// The app with the bundled sample loaded and a wrap rectangle ready.
     pub fn with_sample() -> Self {
         let mut app = TopoApp::default();
-        let field = crate::io::decode_image(SAMPLE_PNG, "cells.png").expect("bundled sample decodes");
+        let field =
+            crate::io::decode_image(SAMPLE_PNG, "cells.png").expect("bundled sample decodes");
         app.set_image(field, "cells.png (sample)".into());
         app.apply_now(Command::WrapBorder(6.0));
         app

@@ -31,6 +31,7 @@ use super::field::{Field, Pyramid};
 use super::forces::{normal_speed, ForceWeights, IntensityModel, Polarity};
 use super::implicit::Implicit;
 use super::init::Shape;
+use super::local::{self, Modality};
 use super::remesh::remesh;
 use crate::contours::{BroadPhaseKind, ContourSet};
 use crate::geometry::{Aabb, Point};
@@ -95,6 +96,19 @@ pub struct Params {
     /// Broad phase of the crossing search (same results, different speed and memory).
     #[serde(default)]
     pub broad_phase: BroadPhaseKind,
+    /// The kind of image (phase contrast clips the halo; see [`super::local`]).
+    #[serde(default)]
+    pub modality: Modality,
+    /// Compare with a local decision level (see [`super::local`]) instead of the global one.
+    #[serde(default = "default_local")]
+    pub local: bool,
+    /// Radius of the local statistics in pixels; `None`: from the seeds or the image.
+    #[serde(default)]
+    pub local_radius: Option<f64>,
+}
+
+fn default_local() -> bool {
+    true
 }
 
 fn default_mode() -> Mode {
@@ -113,6 +127,9 @@ impl Default for Params {
             converged_share: 0.03,
             coarsest_side: 64,
             broad_phase: BroadPhaseKind::Bins,
+            modality: Modality::Generic,
+            local: true,
+            local_radius: None,
         }
     }
 }
@@ -165,6 +182,8 @@ pub struct Frame {
 pub struct Evolver {
     set: ContourSet,
     pyramid: std::sync::Arc<Pyramid>,
+    /// Per pyramid level, the local decision level of the region term (empty: global).
+    decision: std::sync::Arc<Vec<local::Decision>>,
     params: Params,
     model: IntensityModel,
     level: usize,
@@ -199,11 +218,40 @@ impl Evolver {
             return Err(EvolveError::EmptyInit);
         }
         check_shapes(init, image.width, image.height)?;
+        let clipped;
+        let image = if params.modality == Modality::PhaseContrast {
+            // The halo reads as background: clip it to the background level, which the
+            // wrap's band shows, or else the image's median (background dominates).
+            let b = hints(image, init).1.unwrap_or_else(|| {
+                median(&mut image.data.iter().map(|&v| v as f64).collect::<Vec<_>>()).unwrap_or(0.5)
+            });
+            clipped = local::clip_halo(image, params.polarity, b);
+            &clipped
+        } else {
+            image
+        };
         let pyramid = std::sync::Arc::new(Pyramid::new(image, params.coarsest_side, 4));
         let level = pyramid.levels.len() - 1;
         let fine = &pyramid.levels[0].image;
         let (object_hint, background_hint) = hints(fine, init);
         let model = IntensityModel::learn(fine, params.polarity, object_hint, background_hint);
+        let decision = if params.local {
+            let radius = params
+                .local_radius
+                .unwrap_or_else(|| local::object_scale(fine, &model));
+            let floor = local::floor(fine, &model, params.modality);
+            pyramid
+                .levels
+                .iter()
+                .enumerate()
+                .map(|(l, lv)| {
+                    let r = (radius / Pyramid::scale(l)).round().max(1.0) as usize;
+                    local::decision_field(&lv.image, r, &model, floor)
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         let spacing = Pyramid::scale(level);
         let domain = Aabb {
             min: Point::new(0.0, 0.0),
@@ -243,6 +291,7 @@ impl Evolver {
         let mut ev = Evolver {
             set,
             pyramid,
+            decision: std::sync::Arc::new(decision),
             params,
             model,
             level,
@@ -378,6 +427,7 @@ impl Evolver {
         }
         let scale = Pyramid::scale(self.level);
         let field = &self.pyramid.levels[self.level];
+        let decision = self.decision.get(self.level);
         let max_step = self.params.step * scale;
         let w = self.params.weights;
         let mut events = Vec::new();
@@ -410,7 +460,7 @@ impl Evolver {
                 self.set.position(n),
             );
             let normal = outward_normal(pp, x, pn);
-            let f = normal_speed(field, &self.model, &w, x * (1.0 / scale), normal);
+            let f = normal_speed(field, decision, &self.model, &w, x * (1.0 / scale), normal);
             energy += f.region.abs();
             // Stretching pulls to the neighbours' midpoint; bending smooths that pull.
             let lap = (pp + pn) * 0.5 - x;
@@ -720,7 +770,9 @@ fn check_shapes(init: &[Shape], width: usize, height: usize) -> Result<(), Evolv
             Shape::Polygon(pts) => pts.iter().all(|p| p.x.is_finite() && p.y.is_finite()),
         };
         if !finite {
-            return Err(EvolveError::BadShape(format!("{s:?} has a coordinate that is not finite")));
+            return Err(EvolveError::BadShape(format!(
+                "{s:?} has a coordinate that is not finite"
+            )));
         }
     }
     Ok(())

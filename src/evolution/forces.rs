@@ -14,6 +14,7 @@
 //! - Smoothing is weak: a user expects contours to follow narrow slots and thin bridges.
 
 use super::field::{Field, Level};
+use super::local::Decision;
 use crate::geometry::Point;
 
 /// Which objects to segment.
@@ -64,11 +65,18 @@ impl IntensityModel {
     /// background mean.
     #[inline]
     pub fn score(&self, i: f64) -> f64 {
+        self.score_at(i, self.threshold())
+    }
+
+    /// [`IntensityModel::score`] against the decision level `level` instead of the
+    /// midpoint (a local level, see [`super::local`]), in units of half the contrast.
+    #[inline]
+    pub fn score_at(&self, i: f64, level: f64) -> f64 {
         let half = 0.5 * (self.object - self.background);
         if half == 0.0 {
             0.0
         } else {
-            (i - self.threshold()) / half
+            (i - level) / half
         }
     }
 
@@ -183,19 +191,30 @@ pub struct NormalSpeed {
     pub region: f64,
 }
 
-/// Normal speed at `x` (level coordinates) with outward unit normal `n`.
+/// Normal speed at `x` (level coordinates) with outward unit normal `n`; `decision` is
+/// the level's local decision level and contrast, if any.
 #[inline]
 pub fn normal_speed(
     level: &Level,
+    decision: Option<&Decision>,
     model: &IntensityModel,
     w: &ForceWeights,
     x: Point,
     n: Point,
 ) -> NormalSpeed {
     let t = level.sample(x);
-    let s = model.score(t.value);
+    // The score in units of half the contrast, and the contrast: local or global.
+    let (s, contrast) = match decision {
+        Some(d) => {
+            let half = d.half.sample(x).max(1e-6);
+            ((t.value - d.level.sample(x)) * d.sign / half, 2.0 * half)
+        }
+        None => (
+            model.score(t.value),
+            (model.object - model.background).abs().max(1e-6),
+        ),
+    };
     let region = s.clamp(-1.0, 1.0);
-    let contrast = (model.object - model.background).abs().max(1e-6);
     // Balloon with the object's intensity window (scores 0 to 2.5): out inside it, in
     // outside, ramping over a quarter of the score at the window's edges so that it
     // never chatters across an edge; faded where the gradient says an edge is near.

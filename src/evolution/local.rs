@@ -1,0 +1,294 @@
+//! Local decision levels for the region force, and the image-type preprocessing of
+//! phase contrast.
+//!
+//! One global two-class model (Otsu plus the means under the initialisation) misses dim
+//! objects next to bright ones: the global level lies above them. The region term
+//! therefore compares the intensity with a decision level T(x) that adapts to the
+//! neighbourhood: halfway between the background b and the most object-like value e(x)
+//! within a (2r+1)² box around x (the local maximum for bright objects, the minimum for
+//! dark ones), bounded on both sides,
+//!
+//!   T(x) = b + s · clamp(s · (e(x) − b) / 2, floor, s · (T_g − b)),
+//!
+//! with s = +1 for bright objects and −1 for dark ones, T_g the global model's level
+//! (halfway between its means) and floor = ¼ of the global contrast. At the edge of an
+//! object, e is the object's own level, so T is the midpoint of *its* contrast: a dim
+//! nucleus gets the level halfway to its own brightness, and a clean object of the
+//! global contrast gets exactly T_g (no change on our synthetic cases, where the global
+//! midpoint is the edge of a blurred step). Inside a large object e is the object
+//! itself, so nothing inside reads as background (a local *mean* would put half of a
+//! large object's interior below its own level). The floor keeps flat background, where
+//! e is the background plus its noise, from reading as object. The extreme filter is
+//! separable (a monotone deque per row and column, O(1) per pixel), computed once per
+//! pyramid level; a sample is one bilinear read.
+//!
+//! We chose this over localized region means (Lankton & Tannenbaum 2008), whose means
+//! depend on the moving contour and would need new summed-area tables every frame, and
+//! over region-scalable fitting (Li et al. 2008), which needs two convolutions per
+//! iteration: both cost O(pixels) per frame, ours once per level. Measured on the public
+//! fluorescence case (dsb2018_nuclei, by thresholding alone): the global level gives
+//! Dice 0.86 at best; this level 0.907–0.910 for r = 5 (0.90 for r = 8, 0.89 for r = 3
+//! or 12); a local mean with the same bounds 0.90–0.92 for r between 8 and 16, but it
+//! moves every edge of our synthetic cases off the midpoint (spiral_grow Dice 0.998 →
+//! 0.949 in the full evolution).
+//!
+//! The radius r is the object scale: the mean half-width 2A/P (area over perimeter: the
+//! radius of a disk, half the width of a long rod) of what the global level finds,
+//! clamped to [`RADIUS_RANGE`]. Within one half-width of an object's edge the box still
+//! reaches the object's own extreme, while a brighter neighbour further off does not
+//! raise the level.
+//!
+//! Phase contrast (`Modality::PhaseContrast`): cells are dark, wrapped in a bright halo,
+//! on grey background. Values brighter than the background are clipped to it before the
+//! pyramid is built, so the halo reads as background for every force: the wrap stops at
+//! the halo's outside, keeps shrinking through it, and settles where the dark cell
+//! meets the bright rim (the steepest edge left after clipping). For bright objects in
+//! phase contrast the mirror rule clips the dark side.
+
+use super::field::Field;
+use super::forces::{IntensityModel, Polarity, MIN_CONTRAST};
+
+/// The kind of image, as the user knows it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Modality {
+    /// No assumption beyond the object's polarity.
+    #[default]
+    Generic,
+    /// Fluorescence: bright objects on dark background, of very different brightness.
+    Fluorescence,
+    /// Phase contrast: dark cells with a bright halo on grey background.
+    PhaseContrast,
+    /// Bright field: objects darker or brighter than an even background.
+    Brightfield,
+}
+
+impl Modality {
+    /// The name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Modality::Generic => "generic",
+            Modality::Fluorescence => "fluorescence",
+            Modality::PhaseContrast => "phase-contrast",
+            Modality::Brightfield => "brightfield",
+        }
+    }
+}
+
+/// Smallest and largest local radius, full-resolution pixels.
+pub const RADIUS_RANGE: (f64, f64) = (3.0, 24.0);
+
+/// How many noise standard deviations the local level keeps from the background.
+pub const FLOOR_SIGMAS: f64 = 6.0;
+
+/// The standard deviation of the pixel noise in `fine` (pyramid level 0): the median
+/// absolute deviation of its high-pass residual (the image less its [1 2 1] blur),
+/// × 1.4826 for a Gaussian, × 2.64 to undo the residual filter's gain on white noise
+/// (σ of level 0 over σ of its residual, measured on simulated white noise). The median
+/// ignores the edges of objects, which are few pixels.
+pub fn noise_sigma(fine: &Field) -> f64 {
+    let smooth = fine.blur(&[0.25, 0.5, 0.25]);
+    let mut hp: Vec<f32> = fine
+        .data
+        .iter()
+        .zip(&smooth.data)
+        .map(|(a, b)| a - b)
+        .collect();
+    let mid = hp.len() / 2;
+    let med = *hp.select_nth_unstable_by(mid, f32::total_cmp).1;
+    let mut dev: Vec<f32> = hp.iter().map(|v| (v - med).abs()).collect();
+    let mad = *dev.select_nth_unstable_by(mid, f32::total_cmp).1;
+    mad as f64 * 1.4826 * 2.64
+}
+
+/// The smallest distance of the local level from the background: [`FLOOR_SIGMAS`]
+/// noise deviations, at least [`MIN_CONTRAST`], and at least a share of the global
+/// contrast that depends on the kind of image: none in fluorescence, where objects
+/// range from saturated to barely above the noise; a quarter in phase contrast and
+/// bright field, whose textured background (mottle, debris) is far above the pixel noise
+/// while the cells are high-contrast; a tenth when the kind is not said.
+pub fn floor(fine: &Field, model: &IntensityModel, modality: Modality) -> f64 {
+    let share = match modality {
+        Modality::Fluorescence => 0.0,
+        Modality::PhaseContrast | Modality::Brightfield => 0.25,
+        Modality::Generic => 0.1,
+    };
+    let contrast = (model.object - model.background).abs();
+    (FLOOR_SIGMAS * noise_sigma(fine))
+        .max(MIN_CONTRAST)
+        .max(share * contrast)
+}
+
+/// The image with the phase-contrast halo clipped to the background level `b` (values
+/// beyond `b` on the side away from the objects' polarity).
+pub fn clip_halo(image: &Field, polarity: Polarity, b: f64) -> Field {
+    let b = b as f32;
+    let data = match polarity {
+        Polarity::Dark => image.data.iter().map(|&v| v.min(b)).collect(),
+        Polarity::Bright => image.data.iter().map(|&v| v.max(b)).collect(),
+    };
+    Field::new(image.width, image.height, data)
+}
+
+/// The background box reaches this many object radii: from inside an object of up to
+/// three times the mean half-width it still reaches background.
+pub const BACKGROUND_REACH: usize = 3;
+
+/// Mean over the (2r+1)² box around each pixel, the box cut to the image (the mean of
+/// its part inside), by a summed-area table in f64.
+pub fn box_mean(f: &Field, r: usize) -> Field {
+    let (w, h) = (f.width, f.height);
+    let stride = w + 1;
+    let mut sat = vec![0f64; stride * (h + 1)];
+    for y in 0..h {
+        let mut row = 0f64;
+        for x in 0..w {
+            row += f.data[y * w + x] as f64;
+            sat[(y + 1) * stride + x + 1] = sat[y * stride + x + 1] + row;
+        }
+    }
+    let mut out = vec![0f32; w * h];
+    for y in 0..h {
+        let (y0, y1) = (y.saturating_sub(r), (y + r + 1).min(h));
+        for x in 0..w {
+            let (x0, x1) = (x.saturating_sub(r), (x + r + 1).min(w));
+            let s = sat[y1 * stride + x1] - sat[y0 * stride + x1] - sat[y1 * stride + x0]
+                + sat[y0 * stride + x0];
+            out[y * w + x] = (s / ((x1 - x0) * (y1 - y0)) as f64) as f32;
+        }
+    }
+    Field::new(w, h, out)
+}
+
+/// The maximum (`max` true) or minimum over the (2r+1)² box around each pixel, the box
+/// cut to the image: rows, then columns, each with a monotone deque.
+pub fn box_extreme(f: &Field, r: usize, max: bool) -> Field {
+    let (w, h) = (f.width, f.height);
+    let better = |a: f32, b: f32| if max { a >= b } else { a <= b };
+    // One line of `n` values at `get(i)`, written by `put(i, v)`.
+    let mut deque = std::collections::VecDeque::new();
+    let mut line = |n: usize, get: &dyn Fn(usize) -> f32, put: &mut dyn FnMut(usize, f32)| {
+        deque.clear();
+        let mut next = 0;
+        for i in 0..n {
+            while next < n && next <= i + r {
+                let v = get(next);
+                while deque.back().is_some_and(|&(_, b)| better(v, b)) {
+                    deque.pop_back();
+                }
+                deque.push_back((next, v));
+                next += 1;
+            }
+            while deque.front().is_some_and(|&(j, _)| j + r < i) {
+                deque.pop_front();
+            }
+            put(i, deque.front().expect("window holds i").1);
+        }
+    };
+    let mut rows = vec![0f32; w * h];
+    for y in 0..h {
+        let src = &f.data[y * w..(y + 1) * w];
+        let dst = &mut rows[y * w..(y + 1) * w];
+        line(w, &|i| src[i], &mut |i, v| dst[i] = v);
+    }
+    let mut out = vec![0f32; w * h];
+    for x in 0..w {
+        line(h, &|i| rows[i * w + x], &mut |i, v| out[i * w + x] = v);
+    }
+    Field::new(w, h, out)
+}
+
+/// The local decision level T(x) of one pyramid level, with the local half contrast
+/// |T(x) − b(x)| that scales the region score (so a dim object's edge pulls as hard as a
+/// bright one's, and flat background far from the level shrinks a wrap at full speed).
+#[derive(Clone, Debug)]
+pub struct Decision {
+    pub level: Field,
+    pub half: Field,
+    /// +1 for bright objects, −1 for dark ones.
+    pub sign: f64,
+}
+
+/// The decision level T(x) of the module doc for one pyramid level's image, `r` in that
+/// level's pixels.
+pub fn decision_field(image: &Field, r: usize, model: &IntensityModel, floor: f64) -> Decision {
+    let bright = model.object >= model.background;
+    let s = if bright { 1.0 } else { -1.0 };
+    let mut t = box_extreme(image, r, bright);
+    // The emptiest r-box within reach: a mean first, so that noise does not bias it.
+    let mut half = box_extreme(&box_mean(image, r), BACKGROUND_REACH * r, !bright);
+    let tg = model.threshold();
+    for (v, h) in t.data.iter_mut().zip(half.data.iter_mut()) {
+        // Background may be raised by uneven light (more object-like than the global
+        // background), never pushed the other way: a halo beside an object is not
+        // background light.
+        let b = if bright {
+            (*h as f64).max(model.background)
+        } else {
+            (*h as f64).min(model.background)
+        };
+        let level = b + s * (0.5 * s * (*v as f64 - b)).max(floor);
+        // Never beyond the global level: the inside of a large object stays object.
+        let level = if bright { level.min(tg) } else { level.max(tg) };
+        *v = level as f32;
+        *h = (level - b).abs().max(floor) as f32;
+    }
+    Decision {
+        level: t,
+        half,
+        sign: s,
+    }
+}
+
+/// The mean half-width 2A/P of what lies on the object side of the global level (A
+/// counts pixels, P pixel sides between object and background), clamped to
+/// [`RADIUS_RANGE`].
+pub fn object_scale(image: &Field, model: &IntensityModel) -> f64 {
+    let (w, h) = (image.width, image.height);
+    let t = model.threshold() as f32;
+    let bright = model.object >= model.background;
+    let inside = |x: usize, y: usize| (image.at(x, y) > t) == bright;
+    let (mut area, mut perimeter) = (0u64, 0u64);
+    for y in 0..h {
+        for x in 0..w {
+            let a = inside(x, y);
+            area += a as u64;
+            if x + 1 < w && a != inside(x + 1, y) {
+                perimeter += 1;
+            }
+            if y + 1 < h && a != inside(x, y + 1) {
+                perimeter += 1;
+            }
+        }
+    }
+    // Pixel sides overestimate a smooth boundary's length by about 4/π.
+    let half_width = 2.0 * area as f64 / (perimeter.max(1) as f64 * std::f64::consts::FRAC_PI_4);
+    half_width.clamp(RADIUS_RANGE.0, RADIUS_RANGE.1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn box_extreme_equals_the_brute_force_extreme() {
+        let f = Field::new(7, 5, (0..35).map(|i| ((i * 17) % 11) as f32).collect());
+        for r in 0..4 {
+            for max in [false, true] {
+                let m = box_extreme(&f, r, max);
+                for y in 0..5usize {
+                    for x in 0..7usize {
+                        let mut e = if max { f32::MIN } else { f32::MAX };
+                        for yy in y.saturating_sub(r)..(y + r + 1).min(5) {
+                            for xx in x.saturating_sub(r)..(x + r + 1).min(7) {
+                                let v = f.at(xx, yy);
+                                e = if max { e.max(v) } else { e.min(v) };
+                            }
+                        }
+                        assert_eq!(m.at(x, y), e, "r {r} max {max} at {x},{y}");
+                    }
+                }
+            }
+        }
+    }
+}
