@@ -2,6 +2,7 @@
 """topocontour against the level-set tools users would otherwise pick, in one run.
 
 usage: python3 tools/compare_peers.py [CASES_DIR] [--bin PATH] [--mode adaptive|preserve|implicit]
+                                     [--auto-seeds]
 
 For every case folder (image.png, truth.png, case.json) it runs
   * our CLI as a whole process (load, evolve, write the mask): wall time of the process,
@@ -11,9 +12,15 @@ For every case folder (image.png, truth.png, case.json) it runs
       skimage.morph_chan_vese, skimage.morph_gac, sitk.geodesic_active_contour,
       sitk.threshold_level_set
     timed on segmentation only (image loading excluded: generous to the peers);
-and prints per case: seconds, Dice and topology (components, holes; 4-connected, as the
-truth is counted) for each, then our speed ratio against the fastest peer that got the
-topology right ("-" when none did).
+and prints per case: seconds, CPU seconds, Dice, SEG (the Cell Tracking Challenge
+instance measure: mean Jaccard of each reference object with the predicted object that
+covers more than half of it; instances from truth_labels.png, else the truth's
+components; ours from the JSON polygons, a peer's from its mask's components) and
+topology (components, holes; 4-connected, as the truth is counted) for each, then our
+speed ratio against the fastest peer that got the topology right ("-" when none did).
+Cases without truth.png (images to look at) report time and components only. A case
+that names a modality passes it to our CLI (`--modality`), as score_cases.py does;
+`--auto-seeds` replaces our initialisation by found seeds (the instance run).
 
 The peers need numpy, scipy, scikit-image and SimpleITK. When they are missing the script
 makes a virtual environment under target/peers-venv, installs them there with pip and
@@ -30,6 +37,7 @@ Fair configuration (the same rules for every peer):
 """
 import json
 import os
+import resource
 import subprocess
 import sys
 import time
@@ -191,27 +199,74 @@ PEERS = [("skimage.morph_chan_vese", morph_chan_vese), ("skimage.morph_gac", mor
          ("sitk.geodesic_ac", sitk_gac), ("sitk.threshold_ls", sitk_threshold)]
 
 
-def ours(binary, d, meta, mode, out):
+def seg_score(ref, pred):
+    """SEG of a predicted label image against a reference label image (0 = background)."""
+    nr, npred = int(ref.max()) + 1, int(pred.max()) + 1
+    both = np.bincount(ref.ravel() * npred + pred.ravel(), minlength=nr * npred).reshape(nr, npred)
+    rsize, psize = both.sum(1), both.sum(0)
+    scores = []
+    for r in range(1, nr):
+        if rsize[r] == 0:
+            continue
+        p = int(np.argmax(both[r, 1:])) + 1 if npred > 1 else 0
+        inter = both[r, p] if p else 0
+        ok = p and inter > 0.5 * rsize[r]
+        scores.append(inter / (rsize[r] + psize[p] - inter) if ok else 0.0)
+    return float(np.mean(scores)) if scores else float("nan")
+
+
+def json_labels(doc, shape):
+    """One label per outer contour of our JSON, its holes cut out (as score_cases.py)."""
+    lab = np.zeros(shape, np.int64)
+    ids = {}
+    for c in doc["contours"]:
+        if not c["hole"]:
+            ids[c["id"]] = len(ids) + 1
+            xy = np.asarray(c["points"], float)
+            rr, cc = draw.polygon(xy[:, 1] - 0.5, xy[:, 0] - 0.5, shape)
+            lab[rr, cc] = ids[c["id"]]
+    for c in doc["contours"]:
+        if c["hole"] and c["parent"] in ids:
+            xy = np.asarray(c["points"], float)
+            rr, cc = draw.polygon(xy[:, 1] - 0.5, xy[:, 0] - 0.5, shape)
+            sel = lab[rr, cc] == ids[c["parent"]]
+            lab[rr[sel], cc[sel]] = 0
+    return lab
+
+
+def ours(binary, d, meta, mode, auto, out):
     ini = meta["init"]
+    js = out + ".json"
     args = [binary, "segment", os.path.join(d, "image.png"), "--object", ini.get("object", "dark"),
-            "--mode", mode, "--mask", out]
-    if "seeds" in ini:
+            "--mode", mode, "--mask", out, "--json", js]
+    if "modality" in ini:
+        args += ["--modality", ini["modality"]]
+    if auto:
+        args += ["--auto-seeds"]
+    elif "seeds" in ini:
         for x, y, r in ini["seeds"]:
             args += ["--seed", f"{x},{y},{r}"]
     else:
         args += ["--wrap", str(ini["border_margin"])]
-    times = []
+    times, cpus = [], []
     for _ in range(RUNS):
         t = time.perf_counter()
+        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         subprocess.run(args, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
         times.append(time.perf_counter() - t)
-    return sorted(times)[RUNS // 2], io.imread(out) > 127
+        cpus.append(r1.ru_utime - r0.ru_utime + r1.ru_stime - r0.ru_stime)
+    mask = io.imread(out) > 127
+    return sorted(times)[RUNS // 2], sorted(cpus)[RUNS // 2], mask, json_labels(json.load(open(js)), mask.shape)
 
 
 def main():
     argv = sys.argv[1:]
     binary = os.path.join(ROOT, "target", "release", "topocontour")
     mode = "adaptive"
+    auto = "--auto-seeds" in argv
+    if auto:
+        argv.remove("--auto-seeds")
     if "--bin" in argv:
         i = argv.index("--bin")
         binary = argv[i + 1]
@@ -225,7 +280,8 @@ def main():
         sys.exit(f"compare_peers: build first (cargo build --release): no {binary}")
     out = os.path.join(ROOT, "target", "compare_mask.png")
     names = [n for n in sorted(os.listdir(cases)) if os.path.exists(os.path.join(cases, n, "case.json"))]
-    head = f"{'case':<16} {'method':<24} {'seconds':>9} {'dice':>7} {'comp':>5} {'holes':>5} {'topo':>5}"
+    head = (f"{'case':<18} {'method':<24} {'seconds':>9} {'cpu s':>9} {'dice':>7} {'seg':>7} "
+            f"{'comp':>5} {'holes':>5} {'topo':>5}")
     print(head)
     totals = {}
     ratios = []
@@ -237,20 +293,33 @@ def main():
         if img.ndim == 3:
             img = img[..., :3].mean(axis=2)
         img /= 255.0
-        truth = io.imread(os.path.join(d, "truth.png")) > 127
+        tp = os.path.join(d, "truth.png")
+        truth = io.imread(tp) > 127 if os.path.exists(tp) else None
+        lp = os.path.join(d, "truth_labels.png")
+        if os.path.exists(lp):
+            ref = io.imread(lp).astype(np.int64)
+        elif truth is not None:
+            ref = ndi.label(truth, np.ones((3, 3), bool))[0]
+        else:
+            ref = None
         want = (meta["expect"]["components"], meta["expect"]["holes"])
         rows = []
-        secs, m = ours(binary, d, meta, mode, out)
-        rows.append((f"topocontour ({mode})", secs, m))
+        secs, cpu, m, lab = ours(binary, d, meta, mode, auto, out)
+        label = f"topocontour ({mode}{', auto' if auto else ''})"
+        rows.append((label, secs, cpu, m, lab))
         for pname, fn in PEERS:
-            t = time.perf_counter()
+            t, c0 = time.perf_counter(), time.process_time()
             pm = np.asarray(fn(img, meta)).astype(bool)
-            rows.append((pname, time.perf_counter() - t, pm))
+            secs, cpu = time.perf_counter() - t, time.process_time() - c0
+            rows.append((pname, secs, cpu, pm, ndi.label(pm, np.ones((3, 3), bool))[0]))
         best = None
-        for label, secs, m in rows:
+        for label, secs, cpu, m, lab in rows:
             c, h = topo(m)
-            ok = (c, h) == want
-            print(f"{name:<16} {label:<24} {secs:>9.4f} {dice(m, truth):>7.4f} {c:>5} {h:>5} {'ok' if ok else 'NO':>5}")
+            ok = truth is not None and (c, h) == want
+            dc = f"{dice(m, truth):>7.4f}" if truth is not None else f"{'-':>7}"
+            sg = f"{seg_score(ref, lab):>7.4f}" if ref is not None else f"{'-':>7}"
+            verdict = ("ok" if ok else "NO") if truth is not None else "-"
+            print(f"{name:<18} {label:<24} {secs:>9.4f} {cpu:>9.4f} {dc} {sg} {c:>5} {h:>5} {verdict:>5}")
             totals[label] = totals.get(label, 0.0) + secs
             if not label.startswith("topocontour") and ok and (best is None or secs < best[1]):
                 best = (label, secs)

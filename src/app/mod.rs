@@ -7,7 +7,9 @@ mod fill;
 mod panels;
 
 use crate::contours::BroadPhaseKind;
-use crate::evolution::{Evolver, Field, ForceWeights, Mode, Params, Polarity, Shape};
+use crate::evolution::{
+    find_seeds, Evolver, Field, ForceWeights, Modality, Mode, Params, Polarity, Shape,
+};
 use crate::geometry::Point;
 use crate::io::{load_image, OutputFiles, Outputs};
 use crate::topology::TopologyEvent;
@@ -65,6 +67,10 @@ pub enum Command {
     Select(Option<usize>),
     SetTool(Tool),
     WrapBorder(f64),
+    /// Place one seed per object found in the image (automatic seeds), as editable shapes.
+    FindSeeds,
+    /// The kind of image (phase contrast treats the halo as background).
+    SetModality(Modality),
     Play,
     Pause,
     Step(usize),
@@ -88,6 +94,7 @@ pub enum Command {
 #[serde(default)]
 pub struct Settings {
     pub polarity: Polarity,
+    pub modality: Modality,
     pub mode: Mode,
     pub broad_phase: BroadPhaseKind,
     /// The engine shown side by side with `mode`, if any.
@@ -108,6 +115,7 @@ impl Default for Settings {
         let p = Params::default();
         Settings {
             polarity: Polarity::Dark,
+            modality: Modality::Generic,
             mode: Mode::Adaptive,
             broad_phase: p.broad_phase,
             compare: None,
@@ -345,6 +353,7 @@ impl TopoApp {
     pub fn params(&self) -> Params {
         Params {
             polarity: self.settings.polarity,
+            modality: self.settings.modality,
             mode: self.settings.mode,
             broad_phase: self.settings.broad_phase,
             weights: self.settings.weights,
@@ -522,6 +531,18 @@ impl TopoApp {
                     });
                     self.reset_run();
                 }
+            }
+            Command::FindSeeds => {
+                if let Some(img) = &self.image {
+                    let found = find_seeds(img, self.settings.polarity, self.settings.modality);
+                    self.notice = Some(format!("found {} objects: seeds placed", found.len()));
+                    self.shapes.extend(found);
+                    self.reset_run();
+                }
+            }
+            Command::SetModality(m) => {
+                self.settings.modality = m;
+                self.reset_run();
             }
             Command::Play => {
                 if self.ensure_run() {

@@ -3,7 +3,7 @@
 
 use super::{Command, ExportKind, Tool, TopoApp};
 use crate::contours::BroadPhaseKind;
-use crate::evolution::Polarity;
+use crate::evolution::{Modality, Polarity};
 use egui_plot::{Legend, Line, Plot, PlotPoints};
 
 pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
@@ -42,6 +42,13 @@ pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
             if ui.button("Wrap border").clicked() {
                 app.send(Command::WrapBorder(6.0));
             }
+            if ui
+                .button("Find seeds")
+                .on_hover_text("one seed per object, found in the image (distance-transform maxima of the local threshold); move, delete or add seeds before you play")
+                .clicked()
+            {
+                app.send(Command::FindSeeds);
+            }
             let selected = app.selected;
             if ui
                 .add_enabled(selected.is_some(), egui::Button::new("Delete shape"))
@@ -61,6 +68,23 @@ pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
                     app.send(Command::SetPolarity(p));
                 }
             }
+            let modality = app.settings.modality;
+            egui::ComboBox::from_id_salt("modality")
+                .selected_text(format!("image: {}", modality.name()))
+                .show_ui(ui, |ui| {
+                    for m in [
+                        Modality::Generic,
+                        Modality::Fluorescence,
+                        Modality::PhaseContrast,
+                        Modality::Brightfield,
+                    ] {
+                        if ui.selectable_label(modality == m, m.name()).clicked() && modality != m {
+                            app.send(Command::SetModality(m));
+                        }
+                    }
+                })
+                .response
+                .on_hover_text("the kind of image: fluorescence finds dim objects beside bright ones; phase contrast treats the bright halo around cells as background");
             let mode = app.settings.mode;
             for (label, m) in [
                 ("Adaptive", crate::evolution::Mode::Adaptive),

@@ -1,0 +1,178 @@
+//! The real-image machinery on constructed images: the local decision level against a
+//! brute-force reference, automatic seeds on touching disks of different brightness, and
+//! a phase-contrast wrap that ends on the cell, not on the halo.
+
+use proptest::prelude::*;
+use topocontour::evolution::local::{box_extreme, box_mean, decision_field};
+use topocontour::evolution::{
+    find_seeds, Evolver, Field, IntensityModel, Modality, Params, Polarity, Shape,
+};
+use topocontour::geometry::Point;
+
+fn image(w: usize, h: usize, mut f: impl FnMut(f64, f64) -> f32) -> Field {
+    let data = (0..w * h)
+        .map(|i| f((i % w) as f64 + 0.5, (i / w) as f64 + 0.5))
+        .collect();
+    Field::new(w, h, data)
+}
+
+/// The (2r+1)² box around (x, y), cut to the image.
+fn window(f: &Field, x: usize, y: usize, r: usize) -> Vec<f32> {
+    let mut v = Vec::new();
+    for yy in y.saturating_sub(r)..(y + r + 1).min(f.height) {
+        for xx in x.saturating_sub(r)..(x + r + 1).min(f.width) {
+            v.push(f.at(xx, yy));
+        }
+    }
+    v
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Every pixel of the decision level equals the module doc's formula evaluated by
+    /// brute force over its boxes.
+    #[test]
+    fn decision_level_matches_brute_force(
+        w in 1usize..24, h in 1usize..24, r in 1usize..5, seed in any::<u64>(),
+        object in 0.0f64..1.0, background in 0.0f64..1.0, floor in 0.0f64..0.2,
+    ) {
+        let mut s = seed | 1;
+        let f = image(w, h, |_, _| {
+            s ^= s << 13; s ^= s >> 7; s ^= s << 17;
+            (s % 1000) as f32 / 1000.0
+        });
+        let model = IntensityModel { object, background };
+        let d = decision_field(&f, r, &model, floor);
+        let bright = object >= background;
+        let sign = if bright { 1.0 } else { -1.0 };
+        let mean = box_mean(&f, r);
+        // The object's extreme is taken over half the radius (rounded up).
+        let re = r.div_ceil(2);
+        let extreme = box_extreme(&f, re, bright);
+        for y in 0..h {
+            for x in 0..w {
+                let win = window(&f, x, y, r);
+                let m = win.iter().map(|&v| v as f64).sum::<f64>() / win.len() as f64;
+                prop_assert!((mean.at(x, y) as f64 - m).abs() < 1e-5);
+                let e = window(&f, x, y, re).iter().copied().fold(if bright { f32::MIN } else { f32::MAX },
+                    |a, v| if bright { a.max(v) } else { a.min(v) });
+                prop_assert_eq!(extreme.at(x, y), e);
+                // Background: the emptiest box mean within 3r, never less object-like
+                // than the global background.
+                let means = window(&mean, x, y, 3 * r);
+                let b = means.iter().copied().fold(if bright { f32::MAX } else { f32::MIN },
+                    |a, v| if bright { a.min(v) } else { a.max(v) }) as f64;
+                let b = if bright { b.max(background) } else { b.min(background) };
+                let level = b + sign * (0.5 * sign * (e as f64 - b)).max(floor);
+                let tg = 0.5 * (object + background);
+                let level = if bright { level.min(tg) } else { level.max(tg) };
+                prop_assert!((d.level.at(x, y) as f64 - level).abs() < 1e-5,
+                    "{x},{y}: {} vs {level}", d.level.at(x, y));
+                let half = (level - b).abs().max(floor);
+                prop_assert!((d.half.at(x, y) as f64 - half).abs() < 1e-5);
+            }
+        }
+    }
+}
+
+/// Six disks of brightness 0.25 to 1.0 on dark background, touching in pairs: one seed
+/// inside each disk, none elsewhere.
+#[test]
+fn auto_seeds_find_each_of_touching_disks() {
+    let r = 12.0;
+    let mut disks = Vec::new();
+    for (k, row) in [40.0, 100.0, 160.0].iter().enumerate() {
+        // Two disks 1.7 r apart: they overlap, the neck is narrower than either.
+        disks.push((60.0, *row, 0.25 + 0.15 * k as f32));
+        disks.push((60.0 + 1.7 * r, *row, 0.5 + 0.25 * k as f32));
+    }
+    let img = image(200, 200, |x, y| {
+        let mut v = 0.05;
+        for &(cx, cy, b) in &disks {
+            if (x - cx).hypot(y - cy) < r {
+                v = f32::max(v, b);
+            }
+        }
+        // Light texture, as a camera gives.
+        v + 0.01 * (((x * 7.0 + y * 13.0) as i64 % 5) as f32 / 5.0)
+    });
+    let seeds = find_seeds(&img, Polarity::Bright, Modality::Fluorescence);
+    assert_eq!(seeds.len(), disks.len(), "{seeds:?}");
+    for &(cx, cy, _) in &disks {
+        let inside = seeds
+            .iter()
+            .filter(|s| s.center().dist(Point::new(cx, cy)) < r)
+            .count();
+        assert_eq!(inside, 1, "disk at {cx},{cy}: {seeds:?}");
+    }
+    // Grown in preserve mode, the seeds stay six objects, each near its disk's area.
+    let params = Params {
+        polarity: Polarity::Bright,
+        mode: topocontour::evolution::Mode::Preserve,
+        modality: Modality::Fluorescence,
+        ..Params::default()
+    };
+    let mut ev = Evolver::new(&img, &seeds, params).unwrap();
+    ev.run();
+    let set = ev.contours();
+    assert_eq!(set.contour_count(), 6);
+    // A dim disk loses the strip next to its bright partner, whose brightness sets the
+    // local level there (see the module doc of `local`): half a disk at least.
+    for id in set.contour_ids() {
+        let a = set.signed_area(id);
+        assert!(
+            a > 0.5 * std::f64::consts::PI * r * r,
+            "a disk grew to {a} only"
+        );
+    }
+    let total = set.region_area();
+    // Six disks less three lenses of 31 px² where the pairs overlap.
+    let expected = std::f64::consts::PI * r * r * 6.0 - 3.0 * 31.0;
+    assert!(
+        (total - expected).abs() < 0.2 * expected,
+        "area {total}, about {expected}"
+    );
+}
+
+/// A dark cell with a bright halo on grey background: the phase-contrast wrap stops on
+/// the cell boundary (area within 10 % of the cell's), where the generic model takes the
+/// halo's inside or more.
+#[test]
+fn phase_contrast_wrap_ends_on_the_cell() {
+    let (w, h) = (160usize, 160usize);
+    // A rod: a capsule of half-width 7 from (50, 80) to (110, 80).
+    let dist = |x: f64, y: f64| {
+        let t = ((x - 50.0) / 60.0).clamp(0.0, 1.0);
+        (x - (50.0 + 60.0 * t)).hypot(y - 80.0) - 7.0
+    };
+    let img = image(w, h, |x, y| {
+        let d = dist(x, y);
+        // Cell 0.1, a halo peaking at 0.95 just outside, grey 0.5 beyond; soft edges.
+        let cell = 1.0 / (1.0 + (d / 0.7).exp());
+        let halo = 0.45 * (-(d - 3.0).powi(2) / 8.0).exp();
+        (0.5 - 0.4 * cell + halo * (1.0 - cell)) as f32
+    });
+    let wrap = [Shape::Rect {
+        min: Point::new(4.0, 4.0),
+        max: Point::new(w as f64 - 4.0, h as f64 - 4.0),
+    }];
+    let cell_area = 60.0 * 14.0 + std::f64::consts::PI * 49.0;
+    let run = |modality| {
+        let params = Params {
+            polarity: Polarity::Dark,
+            modality,
+            ..Params::default()
+        };
+        let mut ev = Evolver::new(&img, &wrap, params).unwrap();
+        ev.run();
+        assert!(ev.frames() <= 300);
+        (ev.contours().contour_count(), ev.contours().region_area())
+    };
+    let (n, area) = run(Modality::PhaseContrast);
+    assert_eq!(n, 1);
+    assert!(
+        (area - cell_area).abs() < 0.1 * cell_area,
+        "phase contrast: area {area}, cell {cell_area}"
+    );
+}
