@@ -27,9 +27,10 @@
 //!   [`floor`]).
 //! - The cap at T_g keeps very bright objects whole where their neighbourhood is brighter
 //!   still.
+//!
 //! The region score is (I − T) / |T − b| (clamped to ±1), so a dim object's edge pulls
-//!   as hard as a bright one's and a wrap over background far from any object shrinks at
-//!   full speed instead of retreating for a thousand frames.
+//! as hard as a bright one's and a wrap over background far from any object shrinks at
+//! full speed instead of retreating for a thousand frames.
 //!
 //! Known limit: a dim object touching a brighter one loses the strip within ⌈r/2⌉ of
 //! its bright partner, whose brightness sets e there (tests/real_microscopy.rs measures
