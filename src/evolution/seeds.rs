@@ -15,7 +15,9 @@
 //! and follows the mask the evolution will see. Long rods (bacteria) have a flat ridge
 //! and get one seed; two rods touching end to end get one at their junction when the
 //! neck is as wide as the rods. A seed's radius is half the distance at its peak, so the
-//! disk lies inside its object.
+//! disk lies inside its object. In phase contrast the mask keeps only pixels ¾ of a
+//! local contrasts past the level ([`CORE_PHASE`]): touching cells are separated there
+//! by grey gaps that read as object at the level itself.
 
 use super::field::{Field, Pyramid};
 use super::forces::{IntensityModel, Polarity};
@@ -29,6 +31,10 @@ pub const PERSISTENCE: f32 = 1.0;
 
 /// Smallest distance to the background at a seed (pixels): thinner specks are noise.
 pub const MIN_PEAK: f32 = 1.5;
+
+/// In phase contrast, how far past the level (in local half contrasts) a pixel must be
+/// to count for the seeds.
+pub const CORE_PHASE: f64 = 0.75;
 
 /// One seed disk per object found in `image`.
 pub fn find_seeds(image: &Field, polarity: Polarity, modality: Modality) -> Vec<Shape> {
@@ -47,11 +53,20 @@ pub fn find_seeds(image: &Field, polarity: Polarity, modality: Modality) -> Vec<
     let r = local::object_scale(&fine, &model).round() as usize;
     let level = local::decision_field(&fine, r, &model, local::floor(&fine, &model, modality));
     let bright = model.object >= model.background;
+    let sign = if bright { 1.0 } else { -1.0 };
+    // Phase contrast: only the cells' cores, well past the level, so the blurred gaps
+    // between touching cells (grey, halfway to the halo) separate them.
+    let core = if modality == Modality::PhaseContrast {
+        CORE_PHASE
+    } else {
+        0.0
+    };
     let mask: Vec<bool> = fine
         .data
         .iter()
         .zip(&level.level.data)
-        .map(|(&v, &t)| (v > t) == bright)
+        .zip(&level.half.data)
+        .map(|((&v, &t), &h)| sign * (v - t) as f64 > core * h as f64)
         .collect();
     let dist = distance_transform(&mask, fine.width, fine.height);
     let smooth = dist.blur(&[0.25, 0.5, 0.25]).blur(&[0.25, 0.5, 0.25]);
