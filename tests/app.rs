@@ -257,3 +257,23 @@ fn side_by_side_runs_a_second_engine_on_the_same_shapes() {
     // Both halves are labelled with their engine.
     h.get_by_label("Canvas");
 }
+
+/// "Find seeds" places one editable seed per object (four dark blobs), and playing grows
+/// them into four contours.
+#[test]
+fn find_seeds_places_one_seed_per_object() {
+    let mut app = TopoApp::default();
+    app.send(Command::OpenImage(case_image("blobs_wrap")));
+    let mut h = harness(app);
+    h.step();
+    h.get_by_label("Find seeds").click();
+    h.step();
+    h.step();
+    let shapes = &h.state().shapes;
+    assert_eq!(shapes.len(), 4, "{shapes:?}");
+    assert!(shapes.iter().all(|s| matches!(s, Shape::Disk { .. })));
+    h.state_mut().send(Command::Step(400));
+    h.step();
+    let run = h.state().run.as_ref().expect("a run");
+    assert_eq!(run.evolver.contours().contour_count(), 4);
+}

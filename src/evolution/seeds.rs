@@ -16,7 +16,7 @@
 //! and get one seed; two rods touching end to end get one at their junction when the
 //! neck is as wide as the rods. A seed's radius is half the distance at its peak, so the
 //! disk lies inside its object. In phase contrast the mask keeps only pixels ¾ of a
-//! local contrasts past the level ([`CORE_PHASE`]): touching cells are separated there
+//! local contrast past the level ([`CORE_PHASE`]): touching cells are separated there
 //! by grey gaps that read as object at the level itself.
 
 use super::field::{Field, Pyramid};
