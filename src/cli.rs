@@ -1,7 +1,8 @@
 //! The headless command line: `topocontour segment …` with the contract of DESIGN.md,
 //! and `topocontour bench …` that times the whole pipeline in-process.
 
-use crate::evolution::{find_seeds, Evolver, Field, Params, Polarity, Shape};
+use crate::contours::BroadPhaseKind;
+use crate::evolution::{find_seeds, Evolver, Field, Modality, Mode, Params, Polarity, Shape};
 use crate::geometry::Point;
 use crate::io::{load_image, OutputFiles, Outputs};
 use clap::{Args, Parser, Subcommand, ValueEnum};
@@ -31,32 +32,6 @@ pub enum Command {
     Bench(BenchArgs),
 }
 
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ObjectArg {
-    Dark,
-    Bright,
-}
-
-impl ObjectArg {
-    fn name(self) -> &'static str {
-        match self {
-            ObjectArg::Dark => "dark",
-            ObjectArg::Bright => "bright",
-        }
-    }
-}
-
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ModeArg {
-    /// Topology adapts: contours split, merge, make and lose holes (seed 003).
-    Adaptive,
-    /// Topology is kept: fronts stop a small gap apart, holes keep a slit (seed 004).
-    Preserve,
-    /// Topology is kept by fast marching on a cut-edge grid; contact lines are sub-pixel
-    /// (seed 000).
-    Implicit,
-}
-
 #[derive(Args, Debug, Clone)]
 pub struct SegmentArgs {
     /// PNG, JPEG or TIFF image (8 or 16 bit, gray or colour).
@@ -76,12 +51,12 @@ pub struct SegmentArgs {
     pub rect: Vec<(f64, f64, f64, f64)>,
     /// Whether objects are darker or brighter than the background.
     #[arg(long, value_enum)]
-    pub object: ObjectArg,
+    pub object: Polarity,
     #[arg(long, value_enum, default_value = "adaptive")]
-    pub mode: ModeArg,
+    pub mode: Mode,
     /// The kind of image: phase contrast treats the bright halo as background.
     #[arg(long, value_enum, default_value = "generic")]
-    pub modality: ModalityArg,
+    pub modality: Modality,
     /// Radius of the local intensity statistics in pixels (default: from the image's
     /// object scale).
     #[arg(long, value_name = "PX")]
@@ -101,6 +76,10 @@ pub struct SegmentArgs {
     /// Write per-region measurements as CSV.
     #[arg(long, value_name = "OUT")]
     pub csv: Option<PathBuf>,
+    /// Write a 16-bit label image (one label per object, holes 0): TIFF for .tif/.tiff,
+    /// else PNG.
+    #[arg(long, value_name = "OUT.tif|png")]
+    pub labels: Option<PathBuf>,
     /// Write the image with the contours drawn (each object its colour) as PNG.
     #[arg(long, value_name = "OUT.png")]
     pub overlay: Option<PathBuf>,
@@ -112,27 +91,7 @@ pub struct SegmentArgs {
     pub min_area: Option<f64>,
     /// Broad phase of the crossing search: vertex bins or staggered hashing (same result).
     #[arg(long, value_enum, default_value = "bins")]
-    pub broad_phase: BroadPhaseArg,
-}
-
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ModalityArg {
-    /// No assumption beyond the object's polarity.
-    Generic,
-    /// Bright objects on dark background, of very different brightness.
-    Fluorescence,
-    /// Dark cells with a bright halo on grey background.
-    PhaseContrast,
-    /// Objects darker or brighter than an even background.
-    Brightfield,
-}
-
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BroadPhaseArg {
-    /// Dense vertex bins over the image (seed 003).
-    Bins,
-    /// Four staggered hash grids (seed 001).
-    Hash,
+    pub broad_phase: BroadPhaseKind,
 }
 
 #[derive(Args, Debug)]
@@ -144,10 +103,10 @@ pub struct BenchArgs {
     pub runs: usize,
     /// Broad phase of the crossing search.
     #[arg(long, value_enum, default_value = "bins")]
-    pub broad_phase: BroadPhaseArg,
+    pub broad_phase: BroadPhaseKind,
     /// Engine to time.
     #[arg(long, value_enum, default_value = "adaptive")]
-    pub mode: ModeArg,
+    pub mode: Mode,
 }
 
 fn parse_numbers<const N: usize>(s: &str) -> Result<[f64; N], String> {
@@ -253,25 +212,10 @@ pub fn init_shapes(a: &SegmentArgs, width: usize, height: usize) -> Result<Vec<S
 /// Params for a segment command.
 pub fn params_for(a: &SegmentArgs) -> Result<Params, Failure> {
     let mut p = Params {
-        mode: match a.mode {
-            ModeArg::Adaptive => crate::evolution::Mode::Adaptive,
-            ModeArg::Preserve => crate::evolution::Mode::Preserve,
-            ModeArg::Implicit => crate::evolution::Mode::Implicit,
-        },
-        polarity: match a.object {
-            ObjectArg::Dark => Polarity::Dark,
-            ObjectArg::Bright => Polarity::Bright,
-        },
-        modality: match a.modality {
-            ModalityArg::Generic => crate::evolution::Modality::Generic,
-            ModalityArg::Fluorescence => crate::evolution::Modality::Fluorescence,
-            ModalityArg::PhaseContrast => crate::evolution::Modality::PhaseContrast,
-            ModalityArg::Brightfield => crate::evolution::Modality::Brightfield,
-        },
-        broad_phase: match a.broad_phase {
-            BroadPhaseArg::Bins => crate::contours::BroadPhaseKind::Bins,
-            BroadPhaseArg::Hash => crate::contours::BroadPhaseKind::Hash,
-        },
+        mode: a.mode,
+        polarity: a.object,
+        modality: a.modality,
+        broad_phase: a.broad_phase,
         ..Params::default()
     };
     if let Some(r) = a.local_radius {
@@ -297,15 +241,17 @@ pub fn params_for(a: &SegmentArgs) -> Result<Params, Failure> {
 
 /// The output paths a segment command asks for, in a fixed order.
 fn output_paths(a: &SegmentArgs) -> Vec<&Path> {
-    [&a.json, &a.mask, &a.svg, &a.geojson, &a.csv, &a.overlay]
-        .into_iter()
-        .flatten()
-        .map(PathBuf::as_path)
-        .collect()
+    [
+        &a.json, &a.mask, &a.svg, &a.geojson, &a.csv, &a.overlay, &a.labels,
+    ]
+    .into_iter()
+    .flatten()
+    .map(PathBuf::as_path)
+    .collect()
 }
 
 /// The outputs' bytes once the run is done, in the order of [`output_paths`].
-fn render(a: &SegmentArgs, out: &Outputs, image: &Field) -> Vec<Vec<u8>> {
+fn render(a: &SegmentArgs, out: &Outputs, image: &Field) -> Result<Vec<Vec<u8>>, Failure> {
     let mut files = Vec::new();
     if a.json.is_some() {
         files.push(out.json().into_bytes());
@@ -325,7 +271,19 @@ fn render(a: &SegmentArgs, out: &Outputs, image: &Field) -> Vec<Vec<u8>> {
     if a.overlay.is_some() {
         files.push(out.overlay_png(image));
     }
-    files
+    if let Some(p) = &a.labels {
+        let tiff = p
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("tif") || e.eq_ignore_ascii_case("tiff"));
+        files.push(out.labels_image(tiff).ok_or_else(|| {
+            bad(format!(
+                "cannot write {}: more than 65,535 objects for a 16-bit label image",
+                p.display()
+            ))
+        })?);
+    }
+    Ok(files)
 }
 
 /// Loads the image and evolves the contours to the end; returns the evolver and the
@@ -339,7 +297,10 @@ fn evolve(a: &SegmentArgs) -> Result<(Evolver, Field), Failure> {
         if found.is_empty() && shapes.is_empty() {
             return Err(bad(format!(
                 "--auto-seeds found no {} object in {}",
-                a.object.name(),
+                match a.object {
+                    Polarity::Dark => "dark",
+                    Polarity::Bright => "bright",
+                },
                 a.image.display()
             )));
         }
@@ -393,9 +354,40 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
         ));
     }
     files
-        .commit(render(a, &out, &image))
+        .commit(render(a, &out, &image)?)
         .map_err(|e| bad(e.to_string()))?;
     Ok(ev)
+}
+
+/// The part of an evaluation case's `case.json` that says how to run it; other keys of
+/// the file (name, expectations, notes) are not ours to read.
+#[derive(serde::Deserialize)]
+struct CaseFile {
+    init: CaseInit,
+}
+
+/// A case's initialisation: what a user knows. Unknown keys are refused, so a typo is an
+/// error rather than a silent default.
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CaseInit {
+    #[serde(default)]
+    seeds: Vec<[f64; 3]>,
+    border_margin: Option<f64>,
+    #[serde(deserialize_with = "value_enum")]
+    object: Polarity,
+    #[serde(default, deserialize_with = "value_enum")]
+    modality: Modality,
+}
+
+/// A clap value name ("bright", "phase-contrast") as the enum it names.
+fn value_enum<'de, D, T>(d: D) -> Result<T, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: ValueEnum,
+{
+    let s = <String as serde::Deserialize>::deserialize(d)?;
+    T::from_str(&s, false).map_err(serde::de::Error::custom)
 }
 
 impl SegmentArgs {
@@ -404,45 +396,29 @@ impl SegmentArgs {
     pub fn from_case(dir: &Path) -> Result<SegmentArgs, Failure> {
         let text = std::fs::read_to_string(dir.join("case.json"))
             .map_err(|e| bad(format!("{}: {e}", dir.display())))?;
-        let meta: serde_json::Value =
-            serde_json::from_str(&text).map_err(|e| bad(format!("{}: {e}", dir.display())))?;
-        let init = &meta["init"];
-        let num = |v: &serde_json::Value| {
-            v.as_f64()
-                .ok_or_else(|| bad(format!("{}: bad seed in case.json", dir.display())))
-        };
-        let mut seeds = Vec::new();
-        for s in init["seeds"].as_array().into_iter().flatten() {
-            seeds.push((num(&s[0])?, num(&s[1])?, num(&s[2])?));
-        }
+        let case: CaseFile = serde_json::from_str(&text)
+            .map_err(|e| bad(format!("{}/case.json: {e}", dir.display())))?;
+        let init = case.init;
         Ok(SegmentArgs {
             image: dir.join("image.png"),
-            seeds,
+            seeds: init.seeds.iter().map(|&[x, y, r]| (x, y, r)).collect(),
             auto_seeds: false,
-            wrap: init["border_margin"].as_f64(),
+            wrap: init.border_margin,
             rect: Vec::new(),
-            object: if init["object"] == "bright" {
-                ObjectArg::Bright
-            } else {
-                ObjectArg::Dark
-            },
-            mode: ModeArg::Adaptive,
-            modality: match init["modality"].as_str() {
-                Some("fluorescence") => ModalityArg::Fluorescence,
-                Some("phase-contrast") => ModalityArg::PhaseContrast,
-                Some("brightfield") => ModalityArg::Brightfield,
-                _ => ModalityArg::Generic,
-            },
+            object: init.object,
+            mode: Mode::Adaptive,
+            modality: init.modality,
             json: None,
             mask: None,
             svg: None,
             geojson: None,
             csv: None,
             overlay: None,
+            labels: None,
             local_radius: None,
             max_frames: None,
             min_area: None,
-            broad_phase: BroadPhaseArg::Bins,
+            broad_phase: BroadPhaseKind::Bins,
         })
     }
 }

@@ -12,12 +12,17 @@
 //! - [`contours`]: the ring arena [`ContourSet`] and its broad phase [`contours::VertexBins`];
 //! - [`topology`]: motion regions, Directives 1 and 2, topology events.
 //!
-//! Cargo features: `gui` (default) builds the desktop app ([`app`], eframe/egui); without
-//! it the library and the headless CLI build with no GUI crates.
+//! Cargo features: `gui` (default) builds the desktop app (`app`, eframe/egui), `cli`
+//! (default) the headless command line (`cli`, clap); without default features the
+//! library builds with neither. `testkit` exposes the test kit (`check`) to tests,
+//! benches and fuzz targets.
 
 #[cfg(feature = "gui")]
 pub mod app;
+#[cfg(any(test, feature = "testkit"))]
+#[doc(hidden)]
 pub mod check;
+#[cfg(feature = "cli")]
 pub mod cli;
 pub mod contours;
 pub mod evolution;

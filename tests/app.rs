@@ -277,3 +277,26 @@ fn find_seeds_places_one_seed_per_object() {
     let run = h.state().run.as_ref().expect("a run");
     assert_eq!(run.evolver.contours().contour_count(), 4);
 }
+
+/// The E key steps to the next frame with a topology event (the README promises it).
+#[test]
+fn the_e_key_steps_to_the_next_event() {
+    let mut app = TopoApp::default();
+    app.send(Command::OpenImage(case_image("blobs_wrap")));
+    app.send(Command::WrapBorder(8.0));
+    let mut h = harness(app);
+    h.step();
+    h.key_press(egui::Key::E);
+    h.step();
+    h.step();
+    let app = h.state();
+    let run = app.run.as_ref().expect("E started a run");
+    assert!(app.shown > 0, "E advanced");
+    let rec = app.shown_record().expect("a frame on screen");
+    assert!(
+        !rec.events.is_empty() || run.evolver.is_finished(),
+        "E stopped at frame {} without an event",
+        app.shown
+    );
+    assert!(!app.log.is_empty(), "the event is in the log");
+}

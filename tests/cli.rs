@@ -440,3 +440,51 @@ fn crc32(data: &[u8]) -> u32 {
     }
     !c
 }
+
+/// `--labels` writes one 16-bit label per outer contour (PNG and TIFF), holes 0; the
+/// GeoJSON carries QuPath's `classification` and `measurements`.
+#[test]
+fn labels_and_qupath_geojson() {
+    for ext in ["png", "tif"] {
+        let labels = tmp(&format!("cheese-labels.{ext}"));
+        let geo = tmp(&format!("cheese-{ext}.geojson"));
+        let (doc, mask) = run_case(
+            "cheese_holes",
+            &[
+                "--labels",
+                labels.to_str().unwrap(),
+                "--geojson",
+                geo.to_str().unwrap(),
+            ],
+        );
+        let img = image::open(&labels).unwrap();
+        assert!(
+            matches!(img, image::DynamicImage::ImageLuma16(_)),
+            "{ext}: 16-bit"
+        );
+        let l = img.to_luma16();
+        let mut ids: Vec<u16> = l.pixels().map(|p| p.0[0]).filter(|&v| v > 0).collect();
+        ids.sort_unstable();
+        ids.dedup();
+        let outer = doc["contours"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|c| c["hole"] == false)
+            .count();
+        assert_eq!(ids.len(), outer, "{ext}");
+        // Labelled pixels are exactly the mask's (holes are 0).
+        let (_, _, m) = gray_png(&mask);
+        for (p, &mv) in l.pixels().zip(&m) {
+            assert_eq!(p.0[0] > 0, mv > 127);
+        }
+        let g: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&geo).unwrap()).unwrap();
+        let props = &g["features"][0]["properties"];
+        assert_eq!(props["objectType"], "annotation");
+        assert_eq!(props["classification"]["name"], "Object");
+        let area = props["measurements"]["Area px^2"].as_f64().unwrap();
+        assert!(area > 0.0);
+        assert_eq!(props["measurements"]["Holes"], 2);
+    }
+}

@@ -408,9 +408,7 @@ fn hit_shape(shapes: &[Shape], at: Point, tol: f64) -> Option<usize> {
                     || (at.y - max.y).abs() < tol;
                 near_x && near_y && on_edge
             }
-            Shape::Polygon(p) => {
-                crate::check::region_has(&crate::check::rings_of(std::slice::from_ref(p)), at)
-            }
+            Shape::Polygon(p) => crate::geometry::winding_number(p, at) != 0,
         };
         hit.then_some(i)
     })

@@ -696,13 +696,17 @@ impl TopoApp {
         if ui.ctx().egui_wants_keyboard_input() {
             return;
         }
-        let (space, right, del) = ui.input(|i| {
+        let (space, right, del, event) = ui.input(|i| {
             (
                 i.key_pressed(egui::Key::Space),
                 i.key_pressed(egui::Key::ArrowRight),
                 i.key_pressed(egui::Key::Delete),
+                i.key_pressed(egui::Key::E),
             )
         });
+        if event {
+            self.send(Command::StepToEvent);
+        }
         if space {
             self.send(if self.playing {
                 Command::Pause

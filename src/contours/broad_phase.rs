@@ -68,6 +68,7 @@ pub trait Countable: BroadPhase {
 /// Which broad phase a contour set uses.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum BroadPhaseKind {
     /// Dense vertex bins over the image (seed 003).
     #[default]

@@ -46,6 +46,7 @@ const STALL_FRAMES: usize = 40;
 
 /// How topology may change.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Mode {
     /// Contours split, merge, make and lose holes (seed 003).
     Adaptive,

@@ -19,6 +19,7 @@ use crate::geometry::Point;
 
 /// Which objects to segment.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Polarity {
     /// Objects darker than the background.
     Dark,

@@ -66,6 +66,7 @@ use super::forces::{IntensityModel, Polarity, MIN_CONTRAST};
 /// The kind of image, as the user knows it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Modality {
     /// No assumption beyond the object's polarity.
     #[default]

@@ -79,6 +79,32 @@ impl Outputs<'_> {
         labels
     }
 
+    /// The label image as a 16-bit PNG, or a 16-bit TIFF when `tiff` is true, as Fiji
+    /// and QuPath read label images. `None` when there are more regions than 16 bits
+    /// can label.
+    pub fn labels_image(&self, tiff: bool) -> Option<Vec<u8>> {
+        let labels = self.labels();
+        let data: Vec<u16> = labels
+            .iter()
+            .map(|&l| u16::try_from(l).ok())
+            .collect::<Option<_>>()?;
+        let img = image::ImageBuffer::<image::Luma<u16>, _>::from_raw(
+            self.width as u32,
+            self.height as u32,
+            data,
+        )
+        .expect("one label per pixel");
+        let format = if tiff {
+            image::ImageFormat::Tiff
+        } else {
+            image::ImageFormat::Png
+        };
+        let mut out = std::io::Cursor::new(Vec::new());
+        img.write_to(&mut out, format)
+            .expect("encoding into memory");
+        Some(out.into_inner())
+    }
+
     /// The image in gray with each region tinted in its own colour and every ring (holes
     /// too) drawn on top, as PNG bytes.
     pub fn overlay_png(&self, image: &crate::evolution::Field) -> Vec<u8> {
@@ -171,7 +197,9 @@ impl Outputs<'_> {
     }
 
     /// GeoJSON FeatureCollection of Polygons (outer ring, then holes; closed rings in
-    /// pixel coordinates), as QuPath and napari read them.
+    /// pixel coordinates), as QuPath reads them: `objectType`, a `classification` with
+    /// name and colour, and the measurements in `properties.measurements` (QuPath
+    /// ignores other properties).
     pub fn geojson(&self) -> String {
         let ring = |id: ContourId| {
             let mut pts: Vec<[f64; 2]> = self
@@ -186,11 +214,27 @@ impl Outputs<'_> {
         let features: Vec<_> = regions(self.set)
             .iter()
             .map(|r| {
-                let coords: Vec<_> = std::iter::once(r.id).chain(r.holes.iter().copied()).map(ring).collect();
+                let coords: Vec<_> = std::iter::once(r.id)
+                    .chain(r.holes.iter().copied())
+                    .map(ring)
+                    .collect();
                 json!({
                     "type": "Feature",
                     "geometry": {"type": "Polygon", "coordinates": coords},
-                    "properties": {"id": r.id, "objectType": "annotation", "area": r.area, "perimeter": r.perimeter},
+                    "properties": {
+                        "id": r.id,
+                        "name": format!("object {}", r.id),
+                        "objectType": "annotation",
+                        "classification": {"name": "Object", "color": PALETTE[0]},
+                        "measurements": {
+                            "Area px^2": r.area,
+                            "Perimeter px": r.perimeter,
+                            "Circularity": r.circularity,
+                            "Centroid X px": r.centroid.x,
+                            "Centroid Y px": r.centroid.y,
+                            "Holes": r.holes.len(),
+                        },
+                    },
                 })
             })
             .collect();
