@@ -9,7 +9,7 @@ fn main() {
     let every: usize = a.get(2).map_or(50, |s| s.parse().unwrap());
     let args = SegmentArgs::from_case(&dir).unwrap_or_else(|f| panic!("{}", f.message));
     let image = load_image(&args.image).unwrap();
-    let mut params = params_for(&args).unwrap();
+    let mut params = params_for(&args.run).unwrap();
     if let Ok(w) = std::env::var("W") {
         let v: Vec<f64> = w.split(',').map(|x| x.parse().unwrap()).collect();
         params.weights = topocontour::evolution::ForceWeights {
@@ -22,7 +22,7 @@ fn main() {
     }
     let mut ev = Evolver::new(
         &image,
-        &init_shapes(&args, image.width, image.height).unwrap(),
+        &init_shapes(&args.run, image.width, image.height).unwrap(),
         params,
     )
     .unwrap();

@@ -488,3 +488,80 @@ fn labels_and_qupath_geojson() {
         assert_eq!(props["measurements"]["Holes"], 2);
     }
 }
+
+/// `batch` over three images writes one JSON per image, named after it, and a summary
+/// with one row per object of each.
+#[test]
+fn batch_writes_one_json_per_image_and_a_summary() {
+    let input = tmp("batch-in");
+    let out = tmp("batch-out");
+    let _ = std::fs::remove_dir_all(&out);
+    std::fs::create_dir_all(&input).unwrap();
+    for name in ["blobs_wrap", "bridge_merge", "phase_cells"] {
+        std::fs::copy(
+            cases_dir().join(name).join("image.png"),
+            input.join(format!("{name}.png")),
+        )
+        .unwrap();
+    }
+    std::fs::write(input.join("notes.txt"), "not an image").unwrap();
+    let run = bin()
+        .args([
+            "batch",
+            input.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--wrap",
+            "6",
+            "--object",
+            "dark",
+            "--formats",
+            "json,labels",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    let mut lines = summary.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,mean_intensity"
+    );
+    let rows: Vec<&str> = lines.collect();
+    let mut total = 0;
+    for name in ["blobs_wrap", "bridge_merge", "phase_cells"] {
+        let doc: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(out.join(format!("{name}.json"))).unwrap(),
+        )
+        .unwrap();
+        let outer = doc["contours"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|c| c["hole"] == false)
+            .count();
+        assert!(outer > 0, "{name}");
+        let mine = rows
+            .iter()
+            .filter(|r| r.starts_with(&format!("\"{name}\",")))
+            .count();
+        assert_eq!(mine, outer, "{name}: one summary row per object");
+        assert!(out.join(format!("{name}.labels.tif")).is_file());
+        total += outer;
+    }
+    assert_eq!(rows.len(), total);
+    let mut names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names.len(),
+        7,
+        "three JSON, three label images, the summary: {names:?}"
+    );
+}

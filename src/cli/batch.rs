@@ -1,0 +1,198 @@
+//! `topocontour batch INPUT_DIR --out OUTPUT_DIR …`: every image of a folder with the same
+//! settings, in parallel (rayon), with a progress bar on a terminal (indicatif).
+//!
+//! Each image gets its outputs named after it (`cells.tif` → `cells.json`, …), written
+//! all or none as `segment` writes them; a failing image is reported on its own line and
+//! the others go on. `summary.csv` gets one row per object of every image that
+//! succeeded. Ctrl-C stops starting new images; those already running finish and are
+//! written, the summary lists them, and the exit code is 1. Images are the folder's
+//! regular files ending in .png, .jpg, .jpeg, .tif or .tiff (not its subfolders), in
+//! name order.
+
+use super::run::{evolve, outputs, RunSettings};
+use super::segment::write_outputs;
+use super::{bad, note, Failure, Format};
+use crate::evolution::regions;
+use crate::io::{OutputFiles, Outputs};
+use clap::Args;
+use rayon::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// The arguments of `batch`.
+#[derive(Args, Debug, Clone)]
+pub struct BatchArgs {
+    /// A folder of images (PNG, JPEG, TIFF).
+    pub input: PathBuf,
+    /// The folder for the outputs (created if missing).
+    #[arg(long, value_name = "OUTPUT_DIR")]
+    pub out: PathBuf,
+    /// Initialisation and parameters, the same for every image.
+    #[command(flatten)]
+    pub run: RunSettings,
+    /// Outputs per image, comma-separated.
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "json")]
+    pub formats: Vec<Format>,
+    /// Images segmented at once (default: one per core).
+    #[arg(long, value_name = "N")]
+    pub jobs: Option<usize>,
+}
+
+/// What one image gave: its summary rows, or why it failed.
+type ImageResult = Result<Vec<String>, Failure>;
+
+/// Runs `batch`.
+pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
+    let images = list_images(&a.input)?;
+    if images.is_empty() {
+        return Err(bad(format!(
+            "{} holds no PNG, JPEG or TIFF image",
+            a.input.display()
+        )));
+    }
+    std::fs::create_dir_all(&a.out)
+        .map_err(|e| bad(format!("cannot create {}: {e}", a.out.display())))?;
+    // The summary is prepared like every output: checked before any work.
+    let summary_path = a.out.join("summary.csv");
+    let summary = OutputFiles::prepare(None, &[&summary_path]).map_err(|e| bad(e.to_string()))?;
+    let stop = std::sync::Arc::new(AtomicBool::new(false));
+    {
+        let stop = stop.clone();
+        // A second handler cannot be installed in the same process (tests run batch
+        // once per process); without one, Ctrl-C ends the run as any signal does.
+        let _ = ctrlc::set_handler(move || stop.store(true, Ordering::SeqCst));
+    }
+    let bar = indicatif::ProgressBar::new(images.len() as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{bar:40} {pos}/{len} images, {elapsed} ({eta} left)",
+        )
+        .expect("a valid template"),
+    );
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(a.jobs.unwrap_or(0))
+        .build()
+        .map_err(|e| Failure {
+            code: 1,
+            message: format!("cannot start worker threads: {e}"),
+        })?;
+    let results: Vec<(PathBuf, Option<ImageResult>)> = pool.install(|| {
+        images
+            .par_iter()
+            .map(|img| {
+                if stop.load(Ordering::SeqCst) {
+                    return (img.clone(), None);
+                }
+                let r = one_image(img, a);
+                bar.inc(1);
+                (img.clone(), Some(r))
+            })
+            .collect()
+    });
+    bar.finish_and_clear();
+    let mut rows = String::from(
+        "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,mean_intensity\n",
+    );
+    let (mut done, mut failed) = (0, 0);
+    for (img, r) in &results {
+        match r {
+            Some(Ok(lines)) => {
+                done += 1;
+                lines.iter().for_each(|l| rows.push_str(l));
+            }
+            Some(Err(f)) => {
+                failed += 1;
+                note(&format!("{}: {}", img.display(), f.message));
+            }
+            None => {}
+        }
+    }
+    summary
+        .commit(vec![rows.into_bytes()])
+        .map_err(|e| bad(e.to_string()))?;
+    let skipped = results.iter().filter(|(_, r)| r.is_none()).count();
+    if skipped > 0 {
+        return Err(Failure {
+            code: 1,
+            message: format!(
+                "interrupted: {done} of {} images done, {failed} failed",
+                images.len()
+            ),
+        });
+    }
+    if failed > 0 {
+        return Err(bad(format!("{failed} of {} images failed", images.len())));
+    }
+    Ok(())
+}
+
+/// The images of `dir`, in name order.
+fn list_images(dir: &Path) -> Result<Vec<PathBuf>, Failure> {
+    let entries =
+        std::fs::read_dir(dir).map_err(|e| bad(format!("cannot read {}: {e}", dir.display())))?;
+    let mut images: Vec<PathBuf> = entries
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.is_file())
+        .filter(|p| {
+            p.extension().and_then(|e| e.to_str()).is_some_and(|e| {
+                ["png", "jpg", "jpeg", "tif", "tiff"]
+                    .iter()
+                    .any(|x| e.eq_ignore_ascii_case(x))
+            })
+        })
+        .collect();
+    images.sort();
+    Ok(images)
+}
+
+/// Segments one image and writes its outputs; returns its summary rows.
+fn one_image(img: &Path, a: &BatchArgs) -> ImageResult {
+    let stem = img
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let paths: Vec<PathBuf> = a
+        .formats
+        .iter()
+        .map(|f| a.out.join(f.file_name(&stem)))
+        .collect();
+    let refs: Vec<&Path> = paths.iter().map(PathBuf::as_path).collect();
+    let files = OutputFiles::prepare(Some(img), &refs).map_err(|e| bad(e.to_string()))?;
+    let (ev, image) = evolve(img, &a.run)?;
+    let out = outputs(&ev, image.width, image.height);
+    let wanted: Vec<(Format, &Path)> = a.formats.iter().copied().zip(refs).collect();
+    write_outputs(files, &wanted, &out, &image)?;
+    Ok(summary_rows(&stem, &out, &image))
+}
+
+/// One CSV row per region: the measurements of `Outputs::csv` and the mean intensity
+/// (0–1 of the image's full scale) over the region's pixels.
+fn summary_rows(name: &str, out: &Outputs, image: &crate::evolution::Field) -> Vec<String> {
+    let labels = out.labels();
+    let n = regions(out.set).len();
+    let (mut sum, mut count) = (vec![0f64; n + 1], vec![0usize; n + 1]);
+    for (&l, &v) in labels.iter().zip(&image.data) {
+        sum[l as usize] += v as f64;
+        count[l as usize] += 1;
+    }
+    let quoted = format!("\"{}\"", name.replace('"', "\"\""));
+    regions(out.set)
+        .iter()
+        .enumerate()
+        .map(|(k, r)| {
+            let mean = sum[k + 1] / count[k + 1].max(1) as f64;
+            format!(
+                "{quoted},{},{:.3},{:.3},{:.4},{:.3},{:.3},{},{:.5}\n",
+                r.id,
+                r.area,
+                r.perimeter,
+                r.circularity,
+                r.centroid.x,
+                r.centroid.y,
+                r.holes.len(),
+                mean
+            )
+        })
+        .collect()
+}

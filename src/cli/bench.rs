@@ -1,0 +1,92 @@
+//! `topocontour bench CASES…`: the whole pipeline timed in-process on case folders.
+
+use super::run::{evolve, outputs};
+use super::{bad, Failure, SegmentArgs};
+use crate::contours::BroadPhaseKind;
+use crate::evolution::Mode;
+use clap::Args;
+use std::io::Write;
+use std::path::PathBuf;
+
+/// The arguments of `bench`.
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Case folders (image.png + case.json), or folders of them.
+    pub cases: Vec<PathBuf>,
+    /// Runs per case.
+    #[arg(long, default_value_t = 10)]
+    pub runs: usize,
+    /// Broad phase of the crossing search.
+    #[arg(long, value_enum, default_value = "bins")]
+    pub broad_phase: BroadPhaseKind,
+    /// Engine to time.
+    #[arg(long, value_enum, default_value = "adaptive")]
+    pub mode: Mode,
+}
+
+/// Times `segment` (in memory, without writing) on case folders.
+pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
+    let mut dirs = Vec::new();
+    for c in &b.cases {
+        if c.join("case.json").is_file() {
+            dirs.push(c.clone());
+        } else if let Ok(rd) = std::fs::read_dir(c) {
+            let mut sub: Vec<PathBuf> = rd
+                .flatten()
+                .map(|e| e.path())
+                .filter(|p| p.join("case.json").is_file())
+                .collect();
+            sub.sort();
+            dirs.extend(sub);
+        } else {
+            return Err(bad(format!("{} is not a case folder", c.display())));
+        }
+    }
+    let mut stdout = std::io::stdout().lock();
+    // A closed pipe (`| head`) ends the output quietly instead of panicking.
+    if writeln!(
+        stdout,
+        "{:<18} {:>8} {:>8} {:>8} {:>7} {:>9}",
+        "case", "min ms", "median", "max ms", "frames", "contours"
+    )
+    .is_err()
+    {
+        return Ok(());
+    }
+    for d in dirs {
+        let mut args = SegmentArgs::from_case(&d)?;
+        args.run.broad_phase = b.broad_phase;
+        args.run.mode = b.mode;
+        let mut times = Vec::new();
+        let (mut frames, mut contours) = (0, 0);
+        for _ in 0..b.runs.max(1) {
+            let t = std::time::Instant::now();
+            let (ev, image) = evolve(&args.image, &args.run)?;
+            let out = outputs(&ev, image.width, image.height);
+            std::hint::black_box((out.json(), out.mask_png()));
+            times.push(t.elapsed().as_secs_f64() * 1e3);
+            frames = ev.frames();
+            contours = ev.contours().contour_count();
+        }
+        times.sort_by(f64::total_cmp);
+        let name = d
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        if writeln!(
+            stdout,
+            "{:<18} {:>8.1} {:>8.1} {:>8.1} {:>7} {:>9}",
+            name,
+            times[0],
+            times[times.len() / 2],
+            times[times.len() - 1],
+            frames,
+            contours
+        )
+        .is_err()
+        {
+            return Ok(());
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,66 @@
+//! The headless command line (feature `cli`): `topocontour segment …` with the contract
+//! of DESIGN.md, `topocontour batch …` over a folder, and `topocontour bench …` that times
+//! the whole pipeline in-process. One module per subcommand; `run` holds what they share
+//! (the initialisation and parameter flags, and one evolution).
+
+mod batch;
+mod bench;
+mod run;
+mod segment;
+
+pub use batch::{batch, BatchArgs};
+pub use bench::{bench, BenchArgs};
+pub use run::{init_shapes, params_for, RunSettings};
+pub use segment::{segment, Format, SegmentArgs};
+
+use clap::{Parser, Subcommand};
+use std::io::Write;
+use std::path::PathBuf;
+
+/// Polygonal active contours that change topology correctly.
+#[derive(Parser, Debug)]
+#[command(
+    name = "topocontour",
+    version,
+    about,
+    args_conflicts_with_subcommands = true
+)]
+pub struct Cli {
+    /// The subcommand; none opens the desktop app.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// An image to open in the desktop app.
+    pub image: Option<PathBuf>,
+}
+
+/// The headless subcommands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Segment an image headless and write the results.
+    Segment(Box<SegmentArgs>),
+    /// Segment every image of a folder with the same settings, in parallel.
+    Batch(Box<BatchArgs>),
+    /// Time the whole pipeline (load, evolve, export) on case folders.
+    Bench(BenchArgs),
+}
+
+/// A failure to report: exit code 2 for bad input, 1 for internal errors.
+#[derive(Debug)]
+pub struct Failure {
+    /// The process exit code.
+    pub code: i32,
+    /// One line for stderr.
+    pub message: String,
+}
+
+fn bad(message: impl Into<String>) -> Failure {
+    Failure {
+        code: 2,
+        message: message.into(),
+    }
+}
+
+/// Writes a line to stderr; a full or closed stderr loses the line, never the run.
+pub fn note(line: &str) {
+    let _ = writeln!(std::io::stderr().lock(), "topocontour: {line}");
+}

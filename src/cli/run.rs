@@ -1,0 +1,224 @@
+//! What every subcommand that segments shares: the initialisation and parameter flags
+//! ([`RunSettings`]), their checks against the image, and one evolution to the end.
+
+use super::{bad, Failure};
+use crate::contours::BroadPhaseKind;
+use crate::evolution::{find_seeds, Evolver, Field, Modality, Mode, Params, Polarity, Shape};
+use crate::geometry::Point;
+use crate::io::{load_image, Outputs};
+use clap::Args;
+use std::path::Path;
+
+/// How to initialise and evolve: the flags `segment` and `batch` share.
+#[derive(Args, Debug, Clone)]
+pub struct RunSettings {
+    /// A seed disk at X,Y with radius R (pixels); repeat for more.
+    #[arg(long = "seed", value_name = "X,Y,R", value_parser = parse_seed)]
+    pub seeds: Vec<(f64, f64, f64)>,
+    /// A rectangle MARGIN pixels inside the image border, to shrink-wrap everything.
+    #[arg(long, value_name = "MARGIN", allow_negative_numbers = true)]
+    pub wrap: Option<f64>,
+    /// One seed per object, found by the tool (distance-transform maxima of the local
+    /// threshold); adds to any other shapes.
+    #[arg(long)]
+    pub auto_seeds: bool,
+    /// A rectangle X0,Y0,X1,Y1.
+    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_rect)]
+    pub rect: Vec<(f64, f64, f64, f64)>,
+    /// Whether objects are darker or brighter than the background.
+    #[arg(long, value_enum)]
+    pub object: Polarity,
+    /// The engine: topology adapts, or is kept (explicitly or implicitly).
+    #[arg(long, value_enum, default_value = "adaptive")]
+    pub mode: Mode,
+    /// The kind of image: phase contrast treats the bright halo as background.
+    #[arg(long, value_enum, default_value = "generic")]
+    pub modality: Modality,
+    /// Radius of the local intensity statistics in pixels (default: from the image's
+    /// object scale).
+    #[arg(long, value_name = "PX")]
+    pub local_radius: Option<f64>,
+    /// Stop after this many frames.
+    #[arg(long, value_name = "N")]
+    pub max_frames: Option<usize>,
+    /// Drop regions and holes smaller than this (square pixels).
+    #[arg(long, value_name = "PX", allow_negative_numbers = true)]
+    pub min_area: Option<f64>,
+    /// Broad phase of the crossing search: vertex bins or staggered hashing (same result).
+    #[arg(long, value_enum, default_value = "bins")]
+    pub broad_phase: BroadPhaseKind,
+}
+
+impl RunSettings {
+    /// Settings with the given polarity and every other flag at its default.
+    pub fn new(object: Polarity) -> Self {
+        RunSettings {
+            seeds: Vec::new(),
+            wrap: None,
+            auto_seeds: false,
+            rect: Vec::new(),
+            object,
+            mode: Mode::Adaptive,
+            modality: Modality::Generic,
+            local_radius: None,
+            max_frames: None,
+            min_area: None,
+            broad_phase: BroadPhaseKind::Bins,
+        }
+    }
+}
+
+fn parse_numbers<const N: usize>(s: &str) -> Result<[f64; N], String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != N {
+        return Err(format!("expected {N} comma-separated numbers, got '{s}'"));
+    }
+    let mut out = [0.0; N];
+    for (o, p) in out.iter_mut().zip(parts) {
+        *o = p
+            .trim()
+            .parse::<f64>()
+            .map_err(|_| format!("'{p}' is not a number"))?;
+        if !o.is_finite() {
+            return Err(format!("'{p}' is not a finite number"));
+        }
+    }
+    Ok(out)
+}
+
+fn parse_seed(s: &str) -> Result<(f64, f64, f64), String> {
+    let [x, y, r] = parse_numbers::<3>(s)?;
+    if r <= 0.0 {
+        return Err(format!("seed radius must be positive, got {r}"));
+    }
+    Ok((x, y, r))
+}
+
+fn parse_rect(s: &str) -> Result<(f64, f64, f64, f64), String> {
+    let [x0, y0, x1, y1] = parse_numbers::<4>(s)?;
+    if x1 <= x0 || y1 <= y0 {
+        return Err(format!("rectangle needs X0 < X1 and Y0 < Y1, got {s}"));
+    }
+    Ok((x0, y0, x1, y1))
+}
+
+/// The shapes the settings ask for, checked against the image size.
+pub fn init_shapes(a: &RunSettings, width: usize, height: usize) -> Result<Vec<Shape>, Failure> {
+    let (w, h) = (width as f64, height as f64);
+    let mut shapes = Vec::new();
+    let diagonal = w.hypot(h);
+    for &(x, y, r) in &a.seeds {
+        if !(0.0..=w).contains(&x) || !(0.0..=h).contains(&y) {
+            return Err(bad(format!(
+                "seed {x},{y} lies outside the {width}×{height} image"
+            )));
+        }
+        if r > diagonal {
+            return Err(bad(format!(
+                "seed radius {r} is larger than the image's diagonal ({diagonal:.0} px)"
+            )));
+        }
+        shapes.push(Shape::Disk {
+            center: Point::new(x, y),
+            radius: r,
+        });
+    }
+    if let Some(m) = a.wrap {
+        if !m.is_finite() || m < 0.0 || 2.0 * m + 2.0 > w.min(h) {
+            return Err(bad(format!(
+                "wrap margin must be between 0 and {} for a {width}×{height} image, got {m}",
+                ((w.min(h) - 2.0) / 2.0).max(0.0)
+            )));
+        }
+        shapes.push(Shape::Rect {
+            min: Point::new(m, m),
+            max: Point::new(w - m, h - m),
+        });
+    }
+    for &(x0, y0, x1, y1) in &a.rect {
+        if x0 < 0.0 || y0 < 0.0 || x1 > w || y1 > h {
+            return Err(bad(format!(
+                "rectangle {x0},{y0},{x1},{y1} is not inside the {width}×{height} image"
+            )));
+        }
+        shapes.push(Shape::Rect {
+            min: Point::new(x0, y0),
+            max: Point::new(x1, y1),
+        });
+    }
+    if shapes.is_empty() && !a.auto_seeds {
+        return Err(bad(
+            "no initialisation: give --seed X,Y,R, --wrap MARGIN, --rect X0,Y0,X1,Y1 or --auto-seeds",
+        ));
+    }
+    Ok(shapes)
+}
+
+/// Params for the settings.
+pub fn params_for(a: &RunSettings) -> Result<Params, Failure> {
+    let mut p = Params {
+        mode: a.mode,
+        polarity: a.object,
+        modality: a.modality,
+        broad_phase: a.broad_phase,
+        ..Params::default()
+    };
+    if let Some(r) = a.local_radius {
+        if !(r.is_finite() && r >= 1.0) {
+            return Err(bad(format!("--local-radius must be a number ≥ 1, got {r}")));
+        }
+        p.local_radius = Some(r);
+    }
+    if let Some(n) = a.max_frames {
+        if n == 0 {
+            return Err(bad("--max-frames must be at least 1"));
+        }
+        p.max_frames = n;
+    }
+    if let Some(m) = a.min_area {
+        if !m.is_finite() || m < 0.0 {
+            return Err(bad(format!("--min-area must be a number ≥ 0, got {m}")));
+        }
+        p.min_area = m;
+    }
+    Ok(p)
+}
+
+/// Loads `path` and evolves the contours to the end; returns the evolver and the image.
+pub(super) fn evolve(path: &Path, a: &RunSettings) -> Result<(Evolver, Field), Failure> {
+    let image = load_image(path).map_err(|e| bad(e.to_string()))?;
+    let mut shapes = init_shapes(a, image.width, image.height)?;
+    let params = params_for(a)?;
+    if a.auto_seeds {
+        let found = find_seeds(&image, params.polarity, params.modality);
+        if found.is_empty() && shapes.is_empty() {
+            return Err(bad(format!(
+                "--auto-seeds found no {} object in {}",
+                match a.object {
+                    Polarity::Dark => "dark",
+                    Polarity::Bright => "bright",
+                },
+                path.display()
+            )));
+        }
+        shapes.extend(found);
+    }
+    let mut ev = Evolver::new(&image, &shapes, params).map_err(|e| bad(e.to_string()))?;
+    ev.run();
+    ev.filter_clutter();
+    Ok((ev, image))
+}
+
+/// The finished run, ready to export.
+pub(super) fn outputs(ev: &Evolver, width: usize, height: usize) -> Outputs<'_> {
+    Outputs {
+        set: ev.contours(),
+        width,
+        height,
+        frames: ev.frames(),
+        converged: ev.is_converged(),
+        events: ev.events(),
+        mode: ev.params().mode.name(),
+        held: ev.held_contacts(),
+    }
+}
