@@ -300,3 +300,28 @@ fn the_e_key_steps_to_the_next_event() {
     );
     assert!(!app.log.is_empty(), "the event is in the log");
 }
+
+/// The app exports a label image and an ImageJ ROI set of the frame on screen.
+#[test]
+fn export_labels_and_roi_set() {
+    let mut h = harness(TopoApp::with_sample());
+    h.step();
+    h.state_mut().send(Command::Step(60));
+    h.step();
+    let dir = std::env::temp_dir();
+    let (tif, zip) = (
+        dir.join(format!("topocontour-app-{}.tif", std::process::id())),
+        dir.join(format!("topocontour-app-{}.zip", std::process::id())),
+    );
+    h.state_mut()
+        .send(Command::Export(ExportKind::Labels, tif.clone()));
+    h.state_mut()
+        .send(Command::Export(ExportKind::Roi, zip.clone()));
+    h.step();
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    let labels = image::open(&tif).expect("label image").to_luma16();
+    let max = labels.pixels().map(|p| p.0[0]).max().unwrap();
+    let archive = zip::ZipArchive::new(std::fs::File::open(&zip).unwrap()).unwrap();
+    assert!(max >= 1);
+    assert_eq!(archive.len(), max as usize, "one ROI per label");
+}

@@ -565,3 +565,61 @@ fn batch_writes_one_json_per_image_and_a_summary() {
         "three JSON, three label images, the summary: {names:?}"
     );
 }
+
+/// `--roi` writes an ImageJ ROI set: read back by a small reader of ImageJ's format, one
+/// ROI per region, a sub-pixel polygon without holes, a composite path with them, the
+/// coordinates those of the JSON.
+#[test]
+fn roi_set_reads_back() {
+    let be16 = |b: &[u8], o: usize| u16::from_be_bytes([b[o], b[o + 1]]);
+    let be32 = |b: &[u8], o: usize| u32::from_be_bytes([b[o], b[o + 1], b[o + 2], b[o + 3]]);
+    let f32at = |b: &[u8], o: usize| f32::from_bits(be32(b, o)) as f64;
+    for (case, holes) in [("blobs_wrap", false), ("cheese_holes", true)] {
+        let roi = tmp(&format!("{case}.roi.zip"));
+        let (doc, _) = run_case(case, &["--roi", roi.to_str().unwrap()]);
+        let contours = doc["contours"].as_array().unwrap();
+        let outer: Vec<&serde_json::Value> =
+            contours.iter().filter(|c| c["hole"] == false).collect();
+        let mut zip = zip::ZipArchive::new(std::fs::File::open(&roi).unwrap()).unwrap();
+        assert_eq!(zip.len(), outer.len(), "{case}: one ROI per region");
+        for i in 0..zip.len() {
+            let mut b = Vec::new();
+            std::io::Read::read_to_end(&mut zip.by_index(i).unwrap(), &mut b).unwrap();
+            assert_eq!(&b[0..4], b"Iout");
+            assert!(be16(&b, 4) >= 222, "sub-pixel needs version 222 or later");
+            let kind = b[6];
+            if !holes {
+                assert_eq!(kind, 0, "polygon");
+                let n = be16(&b, 16) as usize;
+                assert_ne!(be16(&b, 50) & 128, 0, "sub-pixel resolution");
+                let xs: Vec<f64> = (0..n).map(|k| f32at(&b, 64 + 4 * n + 4 * k)).collect();
+                let ys: Vec<f64> = (0..n).map(|k| f32at(&b, 64 + 8 * n + 4 * k)).collect();
+                // The same ring as one of the JSON's outer contours.
+                let found = outer.iter().any(|c| {
+                    let pts = c["points"].as_array().unwrap();
+                    pts.len() == n
+                        && pts.iter().zip(xs.iter().zip(&ys)).all(|(p, (x, y))| {
+                            (p[0].as_f64().unwrap() - x).abs() < 1e-3
+                                && (p[1].as_f64().unwrap() - y).abs() < 1e-3
+                        })
+                });
+                assert!(found, "{case}: ROI {i} is no contour of the JSON");
+            } else {
+                assert_eq!(kind, 1, "composite (shape) ROI");
+                let size = be32(&b, 36) as usize;
+                let path: Vec<f64> = (0..size).map(|k| f32at(&b, 64 + 4 * k)).collect();
+                let closes = path.iter().filter(|&&v| v == 4.0).count();
+                assert!(closes >= 3, "{case}: outer ring and two holes as sub-paths");
+                let points: usize = contours
+                    .iter()
+                    .map(|c| c["points"].as_array().unwrap().len())
+                    .sum();
+                assert_eq!(
+                    size,
+                    3 * points + closes,
+                    "{case}: every vertex in the path"
+                );
+            }
+        }
+    }
+}

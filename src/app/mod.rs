@@ -39,6 +39,10 @@ pub enum ExportKind {
     GeoJson,
     Mask,
     Csv,
+    /// 16-bit label image (TIFF).
+    Labels,
+    /// ImageJ ROI set (zip) for Fiji's ROI Manager.
+    Roi,
 }
 
 impl ExportKind {
@@ -48,6 +52,8 @@ impl ExportKind {
             ExportKind::GeoJson => "geojson",
             ExportKind::Mask => "png",
             ExportKind::Csv => "csv",
+            ExportKind::Labels => "tif",
+            ExportKind::Roi => "zip",
         }
     }
 }
@@ -639,6 +645,10 @@ impl TopoApp {
             ExportKind::GeoJson => out.geojson().into_bytes(),
             ExportKind::Mask => out.mask_png(),
             ExportKind::Csv => out.csv().into_bytes(),
+            ExportKind::Labels => out
+                .labels_image(true)
+                .ok_or("more than 65,535 objects for a 16-bit label image")?,
+            ExportKind::Roi => crate::io::roi::roi_zip(out.set),
         };
         OutputFiles::prepare(self.image_path.as_deref(), &[path])
             .and_then(|f| f.commit(vec![bytes]))

@@ -18,6 +18,8 @@ pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
                     ("GeoJSON…", ExportKind::GeoJson),
                     ("Mask PNG…", ExportKind::Mask),
                     ("Measurements CSV…", ExportKind::Csv),
+                    ("Label image TIFF…", ExportKind::Labels),
+                    ("ImageJ ROIs (Fiji)…", ExportKind::Roi),
                 ] {
                     if ui.button(label).clicked() {
                         app.send(Command::ExportDialog(kind));

@@ -38,6 +38,9 @@ pub struct SegmentArgs {
     /// Write the image with the contours drawn (each object its colour) as PNG.
     #[arg(long, value_name = "OUT.png")]
     pub overlay: Option<PathBuf>,
+    /// Write an ImageJ ROI set (zip) that Fiji's ROI Manager opens.
+    #[arg(long, value_name = "OUT.zip")]
+    pub roi: Option<PathBuf>,
 }
 
 /// An output format.
@@ -57,6 +60,8 @@ pub enum Format {
     Labels,
     /// The image with the contours drawn (PNG).
     Overlay,
+    /// ImageJ ROI set (zip).
+    Roi,
 }
 
 impl Format {
@@ -70,6 +75,7 @@ impl Format {
             Format::Csv => format!("{stem}.csv"),
             Format::Labels => format!("{stem}.labels.tif"),
             Format::Overlay => format!("{stem}.overlay.png"),
+            Format::Roi => format!("{stem}.roi.zip"),
         }
     }
 
@@ -87,6 +93,7 @@ impl Format {
             Format::Geojson => out.geojson().into_bytes(),
             Format::Csv => out.csv().into_bytes(),
             Format::Overlay => out.overlay_png(image),
+            Format::Roi => crate::io::roi::roi_zip(out.set),
             Format::Labels => {
                 let tiff = path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
                     e.eq_ignore_ascii_case("tif") || e.eq_ignore_ascii_case("tiff")
@@ -113,6 +120,7 @@ impl SegmentArgs {
             (Format::Csv, &self.csv),
             (Format::Overlay, &self.overlay),
             (Format::Labels, &self.labels),
+            (Format::Roi, &self.roi),
         ]
         .into_iter()
         .filter_map(|(f, p)| p.as_deref().map(|p| (f, p)))
@@ -216,6 +224,7 @@ impl SegmentArgs {
             csv: None,
             labels: None,
             overlay: None,
+            roi: None,
         })
     }
 }
