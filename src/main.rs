@@ -2,7 +2,7 @@
 
 use clap::Parser;
 use std::io::Write;
-use topocontour::cli::{batch, bench, note, segment, Cli, Command, Failure};
+use topocontour::cli::{batch, bench, note, replay, segment, Cli, Command, Failure};
 
 #[cfg(feature = "gui")]
 fn open_app(image: Option<std::path::PathBuf>) -> Result<(), Failure> {
@@ -81,6 +81,7 @@ fn main() {
     let result = match &cli.command {
         // The finished evolver is not dropped: the process ends right after.
         Some(Command::Segment(a)) => segment(a).map(std::mem::forget),
+        Some(Command::Replay(r)) => replay(r).map(std::mem::forget),
         Some(Command::Batch(b)) => batch(b),
         Some(Command::Bench(b)) => bench(b),
         None => open_app(cli.image.clone()),

@@ -325,3 +325,163 @@ fn export_labels_and_roi_set() {
     assert!(max >= 1);
     assert_eq!(archive.len(), max as usize, "one ROI per label");
 }
+
+/// A session saved at a frame opens in a fresh app as the same state: image, shapes,
+/// parameters, frame and contours.
+#[test]
+fn session_save_then_open_gives_the_same_state() {
+    let mut app = TopoApp::default();
+    app.send(Command::OpenImage(case_image("bridge_merge")));
+    app.send(Command::SetPolarity(
+        topocontour::evolution::Polarity::Bright,
+    ));
+    app.send(Command::AddShape(Shape::Disk {
+        center: topocontour::Point::new(60.0, 64.0),
+        radius: 6.0,
+    }));
+    app.send(Command::WrapBorder(4.0));
+    app.send(Command::Step(25));
+    let mut h = harness(app);
+    h.step();
+    let path = std::env::temp_dir().join(format!(
+        "topocontour-app-{}.session.json",
+        std::process::id()
+    ));
+    h.state_mut().send(Command::SaveSession(path.clone()));
+    h.step();
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    let before = h.state();
+    let (shapes, settings, shown) = (before.shapes.clone(), before.settings.clone(), before.shown);
+    let contours = |a: &TopoApp| {
+        let set = a.run.as_ref().unwrap().evolver.contours();
+        (set.contour_count(), set.vertex_count(), set.region_area())
+    };
+    let want = contours(before);
+    let mut other = harness(TopoApp::default());
+    other.step();
+    other.state_mut().send(Command::OpenSession(path));
+    other.step();
+    let after = other.state();
+    assert!(after.error.is_none(), "{:?}", after.error);
+    assert_eq!(after.shapes, shapes);
+    assert_eq!(after.settings.polarity, settings.polarity);
+    assert_eq!(after.shown, shown);
+    assert_eq!(contours(after), want);
+}
+
+/// Undo and redo of adding, moving and deleting a shape, with the keys and the buttons.
+#[test]
+fn undo_and_redo_shape_edits() {
+    let mut app = TopoApp::default();
+    app.send(Command::OpenImage(case_image("bridge_merge")));
+    let mut h = harness(app);
+    h.step();
+    let disk = Shape::Disk {
+        center: topocontour::Point::new(40.0, 40.0),
+        radius: 5.0,
+    };
+    h.state_mut().send(Command::AddShape(disk.clone()));
+    h.step();
+    // A drag: several moves of one shape are one undo step.
+    for _ in 0..5 {
+        h.state_mut().send(Command::MoveShape {
+            index: 0,
+            by: topocontour::Point::new(2.0, 0.0),
+        });
+        h.step();
+    }
+    h.state_mut().send(Command::DeleteShape(0));
+    h.step();
+    assert!(h.state().shapes.is_empty());
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    h.step();
+    h.step();
+    let moved = Shape::Disk {
+        center: topocontour::Point::new(50.0, 40.0),
+        radius: 5.0,
+    };
+    assert_eq!(h.state().shapes, vec![moved.clone()], "undo the delete");
+    h.get_by_label("Undo").click();
+    h.step();
+    h.step();
+    assert_eq!(h.state().shapes, vec![disk], "undo the whole drag");
+    h.get_by_label("Undo").click();
+    h.step();
+    h.step();
+    assert!(h.state().shapes.is_empty(), "undo the add");
+    h.key_press_modifiers(
+        egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,
+        egui::Key::Z,
+    );
+    h.step();
+    h.step();
+    h.get_by_label("Redo").click();
+    h.step();
+    h.step();
+    assert_eq!(h.state().shapes, vec![moved], "redo add and drag");
+}
+
+/// A parameter change clears the run on screen; Undo brings it back at its frame.
+#[test]
+fn undo_brings_back_a_run_a_parameter_change_cleared() {
+    let mut app = TopoApp::with_sample();
+    app.send(Command::Step(30));
+    let mut h = harness(app);
+    h.step();
+    let frame = h.state().shown;
+    assert!(frame > 0 && h.state().run.is_some());
+    h.state_mut().send(Command::SetPolarity(
+        topocontour::evolution::Polarity::Bright,
+    ));
+    h.step();
+    assert!(h.state().run.is_none());
+    h.state_mut().send(Command::Undo);
+    h.step();
+    let app = h.state();
+    assert_eq!(
+        app.settings.polarity,
+        topocontour::evolution::Polarity::Dark
+    );
+    assert_eq!(app.shown, frame);
+    assert!(app.run.is_some(), "the run is back");
+}
+
+/// F1 opens the shortcut list, Esc closes it; ← goes one frame back.
+#[test]
+fn help_and_frame_keys() {
+    let mut app = TopoApp::with_sample();
+    app.send(Command::Step(5));
+    let mut h = harness(app);
+    h.step();
+    assert!(!h.state().show_help);
+    h.key_press(egui::Key::F1);
+    h.step();
+    h.step();
+    assert!(h.state().show_help);
+    h.get_by_label("Keyboard shortcuts");
+    h.key_press(egui::Key::Escape);
+    h.step();
+    assert!(!h.state().show_help);
+    let shown = h.state().shown;
+    h.key_press(egui::Key::ArrowLeft);
+    h.step();
+    h.step();
+    assert_eq!(h.state().shown, shown - 1);
+}
+
+/// A 16-bit image whose data fill 12 bits opens with a contrast window around them.
+#[test]
+fn a_twelve_bit_image_opens_with_its_own_contrast() {
+    let img = image::ImageBuffer::<image::Luma<u16>, _>::from_fn(64, 48, |x, y| {
+        image::Luma([((x * 61 + y * 13) % 4096) as u16])
+    });
+    let path =
+        std::env::temp_dir().join(format!("topocontour-app-12bit-{}.tif", std::process::id()));
+    img.save(&path).unwrap();
+    let mut app = TopoApp::default();
+    app.send(Command::OpenImage(path));
+    let mut h = harness(app);
+    h.step();
+    let (lo, hi) = h.state().settings.contrast;
+    assert!(lo < 0.01 && hi > 0.05 && hi < 0.07, "{lo} {hi}");
+}

@@ -623,3 +623,64 @@ fn roi_set_reads_back() {
         }
     }
 }
+
+/// `segment --save-session` then `replay` gives byte-identical JSON, with automatic seeds
+/// and in every engine; a changed image is refused.
+#[test]
+fn replay_equals_segment() {
+    let img = tmp("replay-image.png");
+    std::fs::copy(cases_dir().join("phase_cells/image.png"), &img).unwrap();
+    for mode in ["adaptive", "preserve", "implicit"] {
+        for init in [&["--wrap", "6"][..], &["--auto-seeds"][..]] {
+            let (a, b, s) = (
+                tmp(&format!("replay-{mode}-{}-a.json", init.len())),
+                tmp(&format!("replay-{mode}-{}-b.json", init.len())),
+                tmp(&format!("replay-{mode}-{}.session", init.len())),
+            );
+            let mut args = vec![
+                "segment",
+                img.to_str().unwrap(),
+                "--object",
+                "dark",
+                "--mode",
+                mode,
+            ];
+            args.extend_from_slice(init);
+            args.extend([
+                "--json",
+                a.to_str().unwrap(),
+                "--save-session",
+                s.to_str().unwrap(),
+            ]);
+            let seg = bin().args(&args).output().unwrap();
+            assert!(
+                seg.status.success(),
+                "{}",
+                String::from_utf8_lossy(&seg.stderr)
+            );
+            let rep = bin()
+                .args(["replay", s.to_str().unwrap(), "--json", b.to_str().unwrap()])
+                .output()
+                .unwrap();
+            assert!(
+                rep.status.success(),
+                "{}",
+                String::from_utf8_lossy(&rep.stderr)
+            );
+            assert_eq!(
+                std::fs::read(&a).unwrap(),
+                std::fs::read(&b).unwrap(),
+                "{mode} {init:?}: replay differs"
+            );
+        }
+    }
+    // The image changes: the session refuses it.
+    let s = tmp("replay-adaptive-2.session");
+    std::fs::copy(cases_dir().join("blobs_wrap/image.png"), &img).unwrap();
+    let out = bin()
+        .args(["replay", s.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("changed"));
+}

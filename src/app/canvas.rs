@@ -27,6 +27,18 @@ pub struct CanvasState {
     fill_cache: Option<(usize, usize, fill::FillMesh)>,
 }
 
+impl CanvasState {
+    /// Drops the polygon being drawn.
+    pub fn cancel_polygon(&mut self) {
+        self.polygon.clear();
+    }
+
+    /// Fits the image to the canvas again on the next frame.
+    pub fn refit(&mut self) {
+        self.zoom = 0.0;
+    }
+}
+
 /// Above this many vertices regions are filled only while playback is paused.
 const FILL_WHILE_PLAYING_MAX_VERTICES: usize = 5000;
 

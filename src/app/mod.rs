@@ -4,6 +4,8 @@
 
 mod canvas;
 mod fill;
+mod history;
+mod keys;
 mod panels;
 
 use crate::contours::BroadPhaseKind;
@@ -93,6 +95,16 @@ pub enum Command {
     /// Run a second engine beside the first, on the same image and shapes (or stop).
     SetCompare(Option<Mode>),
     ResetParameters,
+    /// Save the image reference, shapes, parameters and the frame on screen as a session.
+    SaveSession(PathBuf),
+    /// Open a session: its image, shapes and parameters, run to its frame.
+    OpenSession(PathBuf),
+    /// Choose a file in a dialog, then save (true) or open (false) a session there.
+    SessionDialog(bool),
+    /// Undo the last change of the document (Ctrl+Z).
+    Undo,
+    /// Redo what Undo undid (Ctrl+Shift+Z, Ctrl+Y).
+    Redo,
 }
 
 /// Settings kept between runs (eframe persistence).
@@ -192,6 +204,7 @@ impl FrameRecord {
 }
 
 /// An evolution in progress with its recorded history.
+#[derive(Clone)]
 pub struct Run {
     pub evolver: Evolver,
     /// Frame 0 is the initialisation.
@@ -259,6 +272,24 @@ impl Run {
     }
 }
 
+/// The contrast window of an image: its 0.5th and 99.5th percentiles (a sample of at most
+/// a million pixels), at least 1/255 apart.
+pub fn auto_contrast(f: &Field) -> (f32, f32) {
+    let step = (f.data.len() / 1_000_000).max(1);
+    let mut v: Vec<f32> = f.data.iter().step_by(step).copied().collect();
+    let n = v.len();
+    let at = |v: &mut Vec<f32>, q: f64| {
+        let k = ((n - 1) as f64 * q).round() as usize;
+        *v.select_nth_unstable_by(k, f32::total_cmp).1
+    };
+    let (lo, hi) = (at(&mut v, 0.005), at(&mut v, 0.995));
+    if hi - lo < 1.0 / 255.0 {
+        ((lo - 0.5 / 255.0).max(0.0), (hi + 0.5 / 255.0).min(1.0))
+    } else {
+        (lo, hi)
+    }
+}
+
 /// The whole app state.
 pub struct TopoApp {
     pub image_name: String,
@@ -286,6 +317,10 @@ pub struct TopoApp {
     pub draw_ms: f64,
     pub commands: Vec<Command>,
     canvas: canvas::CanvasState,
+    /// Undo and redo steps.
+    history: history::History,
+    /// The help window is open.
+    pub show_help: bool,
 }
 
 impl Default for TopoApp {
@@ -311,6 +346,8 @@ impl Default for TopoApp {
             draw_ms: 0.0,
             commands: Vec::new(),
             canvas: canvas::CanvasState::default(),
+            history: history::History::default(),
+            show_help: false,
         }
     }
 }
@@ -339,6 +376,9 @@ impl TopoApp {
     }
 
     fn set_image(&mut self, field: Field, name: String) {
+        // Each image opens with its own contrast window: 16-bit data that fills 12 bits
+        // would otherwise open black.
+        self.settings.contrast = auto_contrast(&field);
         self.image = Some(Arc::new(field));
         self.image_path = None;
         self.image_name = name;
@@ -467,8 +507,68 @@ impl TopoApp {
         }
     }
 
+    /// Whether Undo and Redo have something to do.
+    pub fn can_undo_redo(&self) -> (bool, bool) {
+        self.history.can()
+    }
+
+    /// The document as an undo step restores it.
+    fn snapshot(&self) -> history::Snapshot {
+        history::Snapshot {
+            image: self.image.clone(),
+            image_name: self.image_name.clone(),
+            image_path: self.image_path.clone(),
+            shapes: self.shapes.clone(),
+            selected: self.selected,
+            settings: self.settings.clone(),
+            run: self.run.clone(),
+            run_b: self.run_b.clone(),
+            shown: self.shown,
+            log: self.log.clone(),
+        }
+    }
+
+    fn restore(&mut self, s: history::Snapshot) {
+        let same_image = match (&self.image, &s.image) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (a, b) => a.is_none() && b.is_none(),
+        };
+        if !same_image {
+            self.texture = None;
+        }
+        self.image = s.image;
+        self.image_name = s.image_name;
+        self.image_path = s.image_path;
+        self.shapes = s.shapes;
+        self.selected = s.selected;
+        self.settings = s.settings;
+        self.run = s.run;
+        self.run_b = s.run_b;
+        self.shown = s.shown;
+        self.log = s.log;
+        self.playing = false;
+    }
+
     fn apply_now(&mut self, c: Command) {
+        if self.history.starts_step(&c) {
+            let before = self.snapshot();
+            self.history.push(before);
+        }
         match c {
+            Command::Undo => {
+                let now = self.snapshot();
+                match self.history.undo(now) {
+                    Some(s) => self.restore(s),
+                    None => self.notice = Some("nothing to undo".into()),
+                }
+            }
+            Command::Redo => {
+                let now = self.snapshot();
+                match self.history.redo(now) {
+                    Some(s) => self.restore(s),
+                    None => self.notice = Some("nothing to redo".into()),
+                }
+            }
             Command::OpenImage(p) => match load_image(&p) {
                 Ok(f) => {
                     let name = p
@@ -611,13 +711,104 @@ impl TopoApp {
                 self.reset_run();
             }
             Command::ResetParameters => {
+                if let Some(img) = &self.image {
+                    self.settings.contrast = auto_contrast(img);
+                }
                 let d = Settings::default();
                 self.settings.weights = d.weights;
                 self.settings.step = d.step;
                 self.settings.min_area = d.min_area;
                 self.reset_run();
             }
+            Command::SessionDialog(save) => {
+                let mut d = rfd::FileDialog::new().add_filter("sessions", &["json"]);
+                if let Some(dir) = &self.settings.last_dir {
+                    d = d.set_directory(dir);
+                }
+                let chosen = if save {
+                    d.set_file_name(format!("{}.session.json", self.image_name))
+                        .save_file()
+                } else {
+                    d.pick_file()
+                };
+                match (chosen, save) {
+                    (Some(p), true) => self.apply_now(Command::SaveSession(p)),
+                    (Some(p), false) => self.apply_now(Command::OpenSession(p)),
+                    (None, _) => {
+                        self.notice = Some("no file chosen (is a desktop portal running?)".into())
+                    }
+                }
+            }
+            Command::SaveSession(p) => match self.save_session(&p) {
+                Ok(()) => self.notice = Some(format!("session saved to {}", p.display())),
+                Err(e) => self.error = Some(e),
+            },
+            Command::OpenSession(p) => {
+                if let Err(e) = self.open_session(&p) {
+                    self.error = Some(e);
+                }
+            }
         }
+    }
+
+    /// Writes the session of the frame on screen.
+    fn save_session(&mut self, path: &Path) -> Result<(), String> {
+        let (Some(image), Some(image_path)) = (&self.image, &self.image_path) else {
+            return Err(
+                "a session needs an image file: open one first (the sample has none)".into(),
+            );
+        };
+        let abs = image_path.canonicalize().map_err(|e| e.to_string())?;
+        let (frames, finished) = match &self.run {
+            Some(run) => (
+                self.shown,
+                self.shown == run.head() && run.evolver.is_finished(),
+            ),
+            None => (0, false),
+        };
+        let s = crate::io::session::Session::new(
+            &abs,
+            image,
+            self.shapes.clone(),
+            self.params(),
+            frames,
+            finished,
+        )
+        .map_err(|e| e.to_string())?;
+        OutputFiles::prepare(Some(&abs), &[path])
+            .and_then(|f| f.commit(vec![s.to_json().into_bytes()]))
+            .map_err(|e| e.to_string())
+    }
+
+    /// Opens a session: image, shapes, parameters, then steps to its frame.
+    fn open_session(&mut self, path: &Path) -> Result<(), String> {
+        let s = crate::io::session::Session::read(path).map_err(|e| e.to_string())?;
+        let image_path = s.image_path(path);
+        self.apply_now(Command::OpenImage(image_path.clone()));
+        if let Some(e) = self.error.take() {
+            return Err(e);
+        }
+        let crc = crate::io::session::file_crc32(&image_path).map_err(|e| e.to_string())?;
+        if crc != s.image.crc32 {
+            return Err(format!(
+                "{} changed since the session was saved",
+                image_path.display()
+            ));
+        }
+        let p = &s.params;
+        self.settings.polarity = p.polarity;
+        self.settings.mode = p.mode;
+        self.settings.modality = p.modality;
+        self.settings.broad_phase = p.broad_phase;
+        self.settings.weights = p.weights;
+        self.settings.step = p.step;
+        self.settings.min_area = p.min_area;
+        self.shapes = s.shapes.clone();
+        self.reset_run();
+        if s.frames > 0 {
+            self.step_frames(s.frames);
+        }
+        Ok(())
     }
 
     /// Writes the frame on screen (the evolver's state at it) to `path`.
@@ -687,6 +878,7 @@ impl TopoApp {
     pub fn ui(&mut self, ui: &mut egui::Ui) {
         let dt = ui.input(|i| i.stable_dt) as f64;
         self.keyboard(ui);
+        self.help_ui(&ui.ctx().clone());
         panels::top_bar(self, ui);
         panels::bottom_bar(self, ui);
         panels::side_panel(self, ui);
@@ -699,49 +891,6 @@ impl TopoApp {
         self.tick(dt);
         if self.playing {
             ui.ctx().request_repaint();
-        }
-    }
-
-    fn keyboard(&mut self, ui: &egui::Ui) {
-        if ui.ctx().egui_wants_keyboard_input() {
-            return;
-        }
-        let (space, right, del, event) = ui.input(|i| {
-            (
-                i.key_pressed(egui::Key::Space),
-                i.key_pressed(egui::Key::ArrowRight),
-                i.key_pressed(egui::Key::Delete),
-                i.key_pressed(egui::Key::E),
-            )
-        });
-        if event {
-            self.send(Command::StepToEvent);
-        }
-        if space {
-            self.send(if self.playing {
-                Command::Pause
-            } else {
-                Command::Play
-            });
-        }
-        if right {
-            self.send(Command::Step(1));
-        }
-        if del {
-            if let Some(i) = self.selected {
-                self.send(Command::DeleteShape(i));
-            }
-        }
-        let dropped: Vec<PathBuf> = ui.input(|i| {
-            i.raw
-                .dropped_files
-                .iter()
-                .map(|f| f.path().to_path_buf())
-                .filter(|p| !p.as_os_str().is_empty())
-                .collect()
-        });
-        if let Some(p) = dropped.into_iter().next() {
-            self.send(Command::OpenImage(p));
         }
     }
 }

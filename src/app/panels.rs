@@ -12,6 +12,35 @@ pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
             if ui.button("Open…").clicked() {
                 app.send(Command::OpenDialog);
             }
+            let (can_undo, can_redo) = app.can_undo_redo();
+            if ui
+                .add_enabled(can_undo, egui::Button::new("Undo"))
+                .on_hover_text("undo the last change of shapes, parameters or image (Ctrl+Z); a reset run comes back at its frame")
+                .clicked()
+            {
+                app.send(Command::Undo);
+            }
+            if ui
+                .add_enabled(can_redo, egui::Button::new("Redo"))
+                .on_hover_text("redo what Undo undid (Ctrl+Shift+Z or Ctrl+Y)")
+                .clicked()
+            {
+                app.send(Command::Redo);
+            }
+            ui.menu_button("Session", |ui| {
+                if ui
+                    .button("Save session…")
+                    .on_hover_text("the image, shapes, parameters and frame, to reopen here or replay headless (topocontour replay)")
+                    .clicked()
+                {
+                    app.send(Command::SessionDialog(true));
+                    ui.close();
+                }
+                if ui.button("Open session…").clicked() {
+                    app.send(Command::SessionDialog(false));
+                    ui.close();
+                }
+            });
             ui.menu_button("Export", |ui| {
                 for (label, kind) in [
                     ("SVG…", ExportKind::Svg),
@@ -212,8 +241,12 @@ pub fn side_panel(app: &mut TopoApp, ui: &mut egui::Ui) {
                         egui::Slider::new(&mut s.min_area, 0.0..=500.0)
                             .text("min area px² (export)"),
                     );
-                    ui.add(egui::Slider::new(&mut s.contrast.0, 0.0..=1.0).text("contrast low"));
-                    ui.add(egui::Slider::new(&mut s.contrast.1, 0.0..=1.0).text("contrast high"));
+                    // Low never passes high: each slider's range ends at the other.
+                    let (lo, hi) = s.contrast;
+                    ui.add(egui::Slider::new(&mut s.contrast.0, 0.0..=hi).text("contrast low"))
+                        .on_hover_text("display only: the darkest shown value (set per image from its percentiles when it opens)");
+                    ui.add(egui::Slider::new(&mut s.contrast.1, lo..=1.0).text("contrast high"))
+                        .on_hover_text("display only: the brightest shown value");
                     ui.checkbox(&mut s.show_fill, "Fill regions");
                     if ui.button("Reset parameters").clicked() {
                         app.commands.push(Command::ResetParameters);

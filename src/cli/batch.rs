@@ -159,10 +159,10 @@ fn one_image(img: &Path, a: &BatchArgs) -> ImageResult {
         .collect();
     let refs: Vec<&Path> = paths.iter().map(PathBuf::as_path).collect();
     let files = OutputFiles::prepare(Some(img), &refs).map_err(|e| bad(e.to_string()))?;
-    let (ev, image) = evolve(img, &a.run)?;
+    let (ev, image, _) = evolve(img, &a.run)?;
     let out = outputs(&ev, image.width, image.height);
     let wanted: Vec<(Format, &Path)> = a.formats.iter().copied().zip(refs).collect();
-    write_outputs(files, &wanted, &out, &image)?;
+    write_outputs(files, &wanted, &out, &image, None)?;
     Ok(summary_rows(&stem, &out, &image))
 }
 

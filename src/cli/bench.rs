@@ -61,7 +61,7 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
         let (mut frames, mut contours) = (0, 0);
         for _ in 0..b.runs.max(1) {
             let t = std::time::Instant::now();
-            let (ev, image) = evolve(&args.image, &args.run)?;
+            let (ev, image, _) = evolve(&args.image, &args.run)?;
             let out = outputs(&ev, image.width, image.height);
             std::hint::black_box((out.json(), out.mask_png()));
             times.push(t.elapsed().as_secs_f64() * 1e3);

@@ -11,7 +11,7 @@ mod segment;
 pub use batch::{batch, BatchArgs};
 pub use bench::{bench, BenchArgs};
 pub use run::{init_shapes, params_for, RunSettings};
-pub use segment::{segment, Format, SegmentArgs};
+pub use segment::{replay, segment, Format, OutputArgs, ReplayArgs, SegmentArgs};
 
 use clap::{Parser, Subcommand};
 use std::io::Write;
@@ -38,6 +38,8 @@ pub struct Cli {
 pub enum Command {
     /// Segment an image headless and write the results.
     Segment(Box<SegmentArgs>),
+    /// Run a saved session again, headless, and write its outputs.
+    Replay(Box<ReplayArgs>),
     /// Segment every image of a folder with the same settings, in parallel.
     Batch(Box<BatchArgs>),
     /// Time the whole pipeline (load, evolve, export) on case folders.

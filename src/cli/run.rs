@@ -184,8 +184,12 @@ pub fn params_for(a: &RunSettings) -> Result<Params, Failure> {
     Ok(p)
 }
 
-/// Loads `path` and evolves the contours to the end; returns the evolver and the image.
-pub(super) fn evolve(path: &Path, a: &RunSettings) -> Result<(Evolver, Field), Failure> {
+/// Loads `path` and evolves the contours to the end; returns the evolver, the image and
+/// the shapes it started from (automatic seeds included).
+pub(super) fn evolve(
+    path: &Path,
+    a: &RunSettings,
+) -> Result<(Evolver, Field, Vec<Shape>), Failure> {
     let image = load_image(path).map_err(|e| bad(e.to_string()))?;
     let mut shapes = init_shapes(a, image.width, image.height)?;
     let params = params_for(a)?;
@@ -206,7 +210,7 @@ pub(super) fn evolve(path: &Path, a: &RunSettings) -> Result<(Evolver, Field), F
     let mut ev = Evolver::new(&image, &shapes, params).map_err(|e| bad(e.to_string()))?;
     ev.run();
     ev.filter_clutter();
-    Ok((ev, image))
+    Ok((ev, image, shapes))
 }
 
 /// The finished run, ready to export.

@@ -4,6 +4,7 @@
 use super::run::{evolve, outputs, RunSettings};
 use super::{bad, note, Failure};
 use crate::evolution::{Evolver, Modality, Polarity};
+use crate::io::session::Session;
 use crate::io::{OutputFiles, Outputs};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
@@ -16,6 +17,17 @@ pub struct SegmentArgs {
     /// Initialisation and parameters.
     #[command(flatten)]
     pub run: RunSettings,
+    /// The outputs.
+    #[command(flatten)]
+    pub out: OutputArgs,
+    /// Write a session file that `topocontour replay` and the app reproduce this run from.
+    #[arg(long, value_name = "OUT")]
+    pub save_session: Option<PathBuf>,
+}
+
+/// The output files a run can write, each optional.
+#[derive(Args, Debug, Clone, Default)]
+pub struct OutputArgs {
     /// Write contours and events as JSON.
     #[arg(long, value_name = "OUT")]
     pub json: Option<PathBuf>,
@@ -109,9 +121,9 @@ impl Format {
     }
 }
 
-impl SegmentArgs {
+impl OutputArgs {
     /// The outputs the flags name, in a fixed order.
-    pub fn outputs(&self) -> Vec<(Format, &Path)> {
+    pub fn list(&self) -> Vec<(Format, &Path)> {
         [
             (Format::Json, &self.json),
             (Format::Mask, &self.mask),
@@ -128,27 +140,31 @@ impl SegmentArgs {
     }
 }
 
-/// Renders every output of a finished run and writes them all or none.
+/// Renders every output of a finished run and writes them all or none (`extra`: one
+/// more file's bytes, prepared after the outputs, such as a session).
 pub(super) fn write_outputs(
     files: OutputFiles,
     wanted: &[(Format, &Path)],
     out: &Outputs,
     image: &crate::evolution::Field,
+    extra: Option<Vec<u8>>,
 ) -> Result<(), Failure> {
-    let bytes = wanted
+    let mut bytes = wanted
         .iter()
         .map(|&(f, p)| f.render(out, image, p))
         .collect::<Result<Vec<_>, _>>()?;
+    bytes.extend(extra);
     files.commit(bytes).map_err(|e| bad(e.to_string()))
 }
 
 /// Runs `segment` and writes its outputs; returns the finished evolver.
 pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
     // Every output is checked, and its temporary created, before any work.
-    let wanted = a.outputs();
-    let paths: Vec<&Path> = wanted.iter().map(|&(_, p)| p).collect();
+    let wanted = a.out.list();
+    let mut paths: Vec<&Path> = wanted.iter().map(|&(_, p)| p).collect();
+    paths.extend(a.save_session.as_deref());
     let files = OutputFiles::prepare(Some(&a.image), &paths).map_err(|e| bad(e.to_string()))?;
-    let (ev, image) = evolve(&a.image, &a.run)?;
+    let (ev, image, shapes) = evolve(&a.image, &a.run)?;
     let out = outputs(&ev, image.width, image.height);
     if out.held > 0 {
         // The user asked for fixed topology; say where it mattered.
@@ -166,7 +182,41 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
             ev.params().max_frames
         ));
     }
-    write_outputs(files, &wanted, &out, &image)?;
+    let session = match &a.save_session {
+        Some(_) => {
+            // The image by its absolute path: the session may be read from anywhere.
+            let abs = a.image.canonicalize().unwrap_or_else(|_| a.image.clone());
+            let s = Session::new(&abs, &image, shapes, ev.params().clone(), ev.frames(), true)
+                .map_err(|e| bad(format!("cannot read {}: {e}", a.image.display())))?;
+            Some(s.to_json().into_bytes())
+        }
+        None => None,
+    };
+    write_outputs(files, &wanted, &out, &image, session)?;
+    Ok(ev)
+}
+
+/// The arguments of `replay`.
+#[derive(Args, Debug, Clone)]
+pub struct ReplayArgs {
+    /// A session file (from `segment --save-session` or the app).
+    pub session: PathBuf,
+    /// The outputs.
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+/// Runs `replay`: the session's run again, headless, and its outputs.
+pub fn replay(a: &ReplayArgs) -> Result<Evolver, Failure> {
+    let session = Session::read(&a.session).map_err(|e| bad(e.to_string()))?;
+    let wanted = a.out.list();
+    let paths: Vec<&Path> = wanted.iter().map(|&(_, p)| p).collect();
+    let image_path = session.image_path(&a.session);
+    let files = OutputFiles::prepare(Some(&image_path), &paths).map_err(|e| bad(e.to_string()))?;
+    let (mut ev, image) = session.replay(&a.session).map_err(|e| bad(e.to_string()))?;
+    ev.filter_clutter();
+    let out = outputs(&ev, image.width, image.height);
+    write_outputs(files, &wanted, &out, &image, None)?;
     Ok(ev)
 }
 
@@ -217,14 +267,8 @@ impl SegmentArgs {
         Ok(SegmentArgs {
             image: dir.join("image.png"),
             run,
-            json: None,
-            mask: None,
-            svg: None,
-            geojson: None,
-            csv: None,
-            labels: None,
-            overlay: None,
-            roi: None,
+            out: OutputArgs::default(),
+            save_session: None,
         })
     }
 }

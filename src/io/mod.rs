@@ -4,6 +4,7 @@ pub mod atomic;
 pub mod export;
 pub mod load;
 pub mod roi;
+pub mod session;
 
 pub use atomic::{write_atomic, OutputError, OutputFiles};
 pub use export::Outputs;
