@@ -485,3 +485,102 @@ fn a_twelve_bit_image_opens_with_its_own_contrast() {
     let (lo, hi) = h.state().settings.contrast;
     assert!(lo < 0.01 && hi > 0.05 && hi < 0.07, "{lo} {hi}");
 }
+
+/// The vertex of the run's contours nearest to `p`.
+fn vertex_near(app: &TopoApp, p: topocontour::Point) -> u32 {
+    let set = app.run.as_ref().expect("a run").evolver.contours();
+    set.vertices()
+        .min_by(|&a, &b| set.position(a).dist(p).total_cmp(&set.position(b).dist(p)))
+        .unwrap()
+}
+
+/// Hand edits go through the topology core: dragging a vertex of one contour into
+/// another merges them, dragging one through its own contour splits it; both are
+/// logged as events, and Undo takes the edit back.
+#[test]
+fn hand_edits_merge_and_split_exactly() {
+    use topocontour::evolution::Polarity;
+    use topocontour::{Point, TopologyEvent};
+    let mut app = TopoApp::default();
+    app.send(Command::OpenImage(case_image("bridge_merge")));
+    app.send(Command::SetPolarity(Polarity::Bright));
+    for x in [40.0, 75.0] {
+        app.send(Command::AddShape(Shape::Disk {
+            center: Point::new(x, 64.0),
+            radius: 10.0,
+        }));
+    }
+    app.send(Command::Step(1));
+    app.send(Command::SeekFrame(0));
+    let mut h = harness(app);
+    h.step();
+    let count = |h: &Harness<'_, TopoApp>| {
+        h.state()
+            .run
+            .as_ref()
+            .unwrap()
+            .evolver
+            .contours()
+            .contour_count()
+    };
+    assert_eq!(count(&h), 2);
+    // Merge: drag the right-most vertex of the left disk into the right one, in steps.
+    let v = vertex_near(h.state(), Point::new(50.0, 64.0));
+    for k in 1..=5 {
+        h.state_mut().send(Command::HandMove {
+            vertex: v,
+            to: Point::new(50.0 + 4.0 * k as f64, 64.0),
+        });
+        h.step();
+    }
+    assert_eq!(count(&h), 1, "merged");
+    assert!(h
+        .state()
+        .log
+        .iter()
+        .any(|(f, e)| *f == 0 && matches!(e, TopologyEvent::Merge { .. })));
+    h.state_mut().send(Command::Undo);
+    h.step();
+    assert_eq!(count(&h), 2, "undo takes the whole drag back");
+
+    // Split: a long rectangle, its top middle vertex dragged down through the bottom.
+    h.state_mut().send(Command::Reset);
+    h.state_mut().send(Command::DeleteShape(1));
+    h.state_mut().send(Command::DeleteShape(0));
+    h.state_mut().send(Command::AddShape(Shape::Rect {
+        min: Point::new(20.0, 50.0),
+        max: Point::new(108.0, 70.0),
+    }));
+    h.state_mut().send(Command::Step(1));
+    h.state_mut().send(Command::SeekFrame(0));
+    h.step();
+    assert_eq!(count(&h), 1);
+    let v = vertex_near(h.state(), Point::new(64.0, 50.0));
+    let from = h
+        .state()
+        .run
+        .as_ref()
+        .unwrap()
+        .evolver
+        .contours()
+        .position(v);
+    h.state_mut().send(Command::HandMove {
+        vertex: v,
+        to: Point::new(from.x, 80.0),
+    });
+    h.step();
+    assert_eq!(count(&h), 2, "split");
+    assert!(h
+        .state()
+        .log
+        .iter()
+        .any(|(_, e)| matches!(e, TopologyEvent::Split { .. })));
+    h.state()
+        .run
+        .as_ref()
+        .unwrap()
+        .evolver
+        .contours()
+        .sanity_check()
+        .unwrap();
+}

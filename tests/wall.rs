@@ -156,3 +156,68 @@ fn huge_or_non_finite_shapes_are_refused_at_once() {
     };
     assert!(Evolver::new(&img, &[rect], Params::default()).is_err());
 }
+
+/// Random hand edits (long drags anywhere, beyond the border too) keep the rings valid
+/// and inside the image, in both explicit engines.
+#[test]
+fn random_hand_edits_keep_rings_valid_and_inside() {
+    let img = image(96, 80, |x, y| {
+        if (x - 48.0).hypot(y - 40.0) < 20.0 {
+            0.2
+        } else {
+            0.8
+        }
+    });
+    let seeds = [
+        Shape::Disk {
+            center: Point::new(30.0, 40.0),
+            radius: 8.0,
+        },
+        Shape::Disk {
+            center: Point::new(66.0, 40.0),
+            radius: 8.0,
+        },
+        Shape::Rect {
+            min: Point::new(10.0, 60.0),
+            max: Point::new(86.0, 72.0),
+        },
+    ];
+    for mode in [Mode::Adaptive, Mode::Preserve] {
+        let params = Params {
+            mode,
+            ..Params::default()
+        };
+        let mut ev = Evolver::new(&img, &seeds, params).unwrap();
+        let start = ev.contours().contour_count();
+        let mut s = 0x2545_F491_4F6C_DD1Du64;
+        for _ in 0..300 {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            let vs: Vec<u32> = ev.contours().vertices().collect();
+            if vs.is_empty() {
+                break;
+            }
+            let v = vs[(s % vs.len() as u64) as usize];
+            let to = Point::new(
+                (s >> 8) as f64 % 130.0 - 17.0,
+                (s >> 24) as f64 % 110.0 - 15.0,
+            );
+            ev.hand_move(v, to);
+            let set = ev.contours();
+            set.sanity_check()
+                .unwrap_or_else(|e| panic!("{mode:?}: {e}"));
+            if mode == Mode::Preserve {
+                assert_eq!(set.contour_count(), start, "preserve keeps the topology");
+            }
+            for id in set.contour_ids() {
+                for p in set.ring_points(id) {
+                    assert!(
+                        (0.0..=96.0).contains(&p.x) && (0.0..=80.0).contains(&p.y),
+                        "{p:?}"
+                    );
+                }
+            }
+        }
+    }
+}

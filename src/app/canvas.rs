@@ -22,9 +22,37 @@ pub struct CanvasState {
     drag_to_in_image: Option<Point>,
     polygon: Vec<Point>,
     moving: Option<usize>,
+    /// The contour vertex the Edit tool drags.
+    editing: Option<u32>,
     /// The canvas rectangle on screen last frame.
     rect: Option<Rect>,
     fill_cache: Option<(usize, usize, fill::FillMesh)>,
+}
+
+/// The vertex of `set` nearest to `at` within `tol` pixels.
+fn nearest_vertex(set: &crate::contours::ContourSet, at: Point, tol: f64) -> Option<u32> {
+    let mut near = Vec::new();
+    set.vertices_near(
+        &crate::geometry::Aabb { min: at, max: at }.expand(tol),
+        &mut near,
+    );
+    near.into_iter()
+        .map(|v| (v, set.position(v).dist(at)))
+        .filter(|&(_, d)| d <= tol)
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(v, _)| v)
+}
+
+/// The innermost ring of the frame on screen around `at` (a hole inside a region wins).
+fn contour_at(rings: &[super::RingView], at: Point) -> Option<u32> {
+    rings
+        .iter()
+        .filter(|r| crate::geometry::winding_number(&r.points, at) != 0)
+        .min_by(|a, b| {
+            let area = |r: &super::RingView| crate::geometry::signed_area(&r.points).abs();
+            area(a).total_cmp(&area(b))
+        })
+        .map(|r| r.id)
 }
 
 impl CanvasState {
@@ -303,11 +331,26 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
                 cs.moving = hit_shape(&app.shapes, at, 6.0 / zoom as f64);
                 app.commands.push(Command::Select(cs.moving));
             }
+            if tool == Tool::Edit {
+                // The vertex under the pointer in the frame on screen (the run is put
+                // back at that frame, so later frames start from the edit).
+                let shown = app.shown;
+                cs.editing = app.run.as_mut().and_then(|run| {
+                    run.rewind(shown.min(run.history.len() - 1));
+                    nearest_vertex(run.evolver.contours(), at, 8.0 / zoom as f64)
+                });
+            }
         }
     }
     if response.dragged_by(egui::PointerButton::Primary) {
         if let (Some(p), Some(_)) = (pointer, cs.drag_from_in_image) {
             cs.drag_to_in_image = Some(image_from_screen(p));
+            if let (Tool::Edit, Some(v)) = (tool, cs.editing) {
+                app.commands.push(Command::HandMove {
+                    vertex: v,
+                    to: image_from_screen(p),
+                });
+            }
         }
     }
     if let (Some(a), Some(b)) = (cs.drag_from_in_image, cs.drag_to_in_image) {
@@ -370,6 +413,16 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
                     } else {
                         cs.polygon.push(b);
                     }
+                }
+                // A click (no vertex dragged) selects the contour under it.
+                Tool::Edit if cs.editing.take().is_none() || a.dist(b) == 0.0 => {
+                    let shown = app.shown;
+                    let id = app
+                        .run
+                        .as_ref()
+                        .and_then(|r| r.history.get(shown.min(r.history.len() - 1)))
+                        .and_then(|r| contour_at(&r.rings, b));
+                    app.commands.push(Command::SelectContour(id));
                 }
                 Tool::Select => match cs.moving.take() {
                     Some(i) if a.dist(b) > 0.0 => app.commands.push(Command::MoveShape {

@@ -31,8 +31,9 @@ pub struct Snapshot {
 pub struct History {
     past: Vec<Snapshot>,
     future: Vec<Snapshot>,
-    /// The shape the last undo step moved: further moves of it join that step.
-    moving: Option<usize>,
+    /// What the last undo step dragged (a shape, or a contour vertex when true): further
+    /// moves of it join that step.
+    moving: Option<(bool, usize)>,
 }
 
 /// Steps kept: runs can be large.
@@ -57,6 +58,8 @@ impl History {
                 | Command::SetCompare(_)
                 | Command::Reset
                 | Command::ResetParameters
+                | Command::HandMove { .. }
+                | Command::DeleteContour(_)
         )
     }
 
@@ -66,14 +69,16 @@ impl History {
         if !Self::records(c) {
             return false;
         }
-        if let Command::MoveShape { index, .. } = c {
-            if self.moving == Some(*index) {
-                return false;
-            }
-            self.moving = Some(*index);
-        } else {
-            self.moving = None;
+        // A drag (of a shape, or of a contour vertex) is one step.
+        let dragging = match c {
+            Command::MoveShape { index, .. } => Some((false, *index)),
+            Command::HandMove { vertex, .. } => Some((true, *vertex as usize)),
+            _ => None,
+        };
+        if dragging.is_some() && self.moving == dragging {
+            return false;
         }
+        self.moving = dragging;
         true
     }
 

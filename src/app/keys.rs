@@ -9,7 +9,10 @@ pub const SHORTCUTS: [(&str, &str); 11] = [
     ("Right arrow", "step one frame"),
     ("Left arrow", "one frame back"),
     ("E", "step to the next topology event"),
-    ("Delete", "delete the selected shape"),
+    (
+        "Delete",
+        "delete the selected shape (or, with Edit, the selected contour)",
+    ),
     ("Esc", "cancel the polygon being drawn (or close this help)"),
     ("F", "fit the image to the window"),
     ("Ctrl+Z", "undo"),
@@ -82,7 +85,9 @@ impl TopoApp {
             self.send(Command::Step(1));
         }
         if del {
-            if let Some(i) = self.selected {
+            if let Some(id) = self.selected_contour {
+                self.send(Command::DeleteContour(id));
+            } else if let Some(i) = self.selected {
                 self.send(Command::DeleteShape(i));
             }
         }
@@ -114,7 +119,7 @@ impl TopoApp {
                     }
                 });
                 ui.separator();
-                ui.label("Tools: Seed (click, drag sets the radius), Rectangle, Polygon (click the first point to close), Select (drag moves, Delete removes). Find seeds places one seed per object.");
+                ui.label("Tools: Seed (click, drag sets the radius), Rectangle, Polygon (click the first point to close), Select (drag moves, Delete removes), Edit (drag a contour vertex: merges, splits and holes happen exactly; click a contour to measure it, Delete removes it). Find seeds places one seed per object.");
             });
         self.show_help = open;
     }

@@ -32,6 +32,9 @@ pub enum Tool {
     Polygon,
     /// Select, drag or delete seeds and shapes.
     Select,
+    /// Edit the contours by hand: drag a vertex (through the topology core), click to
+    /// select a contour, Delete removes it.
+    Edit,
 }
 
 /// What an export writes.
@@ -101,6 +104,16 @@ pub enum Command {
     OpenSession(PathBuf),
     /// Choose a file in a dialog, then save (true) or open (false) a session there.
     SessionDialog(bool),
+    /// Hand edit: move contour vertex `vertex` of the frame on screen to `to`, through the
+    /// topology core (merges, splits and holes happen exactly, logged as events).
+    HandMove {
+        vertex: u32,
+        to: Point,
+    },
+    /// Hand edit: delete the contour `id` of the frame on screen (with its holes).
+    DeleteContour(u32),
+    /// Select a contour of the frame on screen to see its measurements (or none).
+    SelectContour(Option<u32>),
     /// Undo the last change of the document (Ctrl+Z).
     Undo,
     /// Redo what Undo undid (Ctrl+Shift+Z, Ctrl+Y).
@@ -270,6 +283,30 @@ impl Run {
         self.history.truncate(n + 1);
         self.checkpoints.retain(|(i, _)| *i <= n);
     }
+
+    /// Applies `change` to the evolver at recorded frame `at` (a hand edit): later frames
+    /// are dropped, frame `at` is recorded again with `events` and becomes a checkpoint,
+    /// so stepping and rewinding continue from the edited contours.
+    fn edit_at(
+        &mut self,
+        at: usize,
+        change: impl FnOnce(&mut Evolver) -> Vec<TopologyEvent>,
+    ) -> Vec<TopologyEvent> {
+        self.rewind(at);
+        let events = change(&mut self.evolver);
+        let (energy, converged) = (self.history[at].energy, self.history[at].converged);
+        self.history[at] = FrameRecord::of(
+            &self.evolver,
+            at,
+            events.clone(),
+            Vec::new(),
+            energy,
+            converged,
+        );
+        self.checkpoints.retain(|(i, _)| *i < at);
+        self.checkpoints.push((at, self.evolver.clone()));
+        events
+    }
 }
 
 /// The contrast window of an image: its 0.5th and 99.5th percentiles (a sample of at most
@@ -321,6 +358,8 @@ pub struct TopoApp {
     history: history::History,
     /// The help window is open.
     pub show_help: bool,
+    /// The contour selected with the Edit tool (its measurements show in the status bar).
+    pub selected_contour: Option<u32>,
 }
 
 impl Default for TopoApp {
@@ -348,6 +387,7 @@ impl Default for TopoApp {
             canvas: canvas::CanvasState::default(),
             history: history::History::default(),
             show_help: false,
+            selected_contour: None,
         }
     }
 }
@@ -555,6 +595,27 @@ impl TopoApp {
             self.history.push(before);
         }
         match c {
+            Command::HandMove { vertex, to } => {
+                if self.ensure_run() {
+                    let at = self.shown;
+                    let run = self.run.as_mut().expect("ensured");
+                    let events = run.edit_at(at, |ev| ev.hand_move(vertex, to));
+                    self.log.retain(|(f, _)| *f <= at);
+                    self.log.extend(events.into_iter().map(|e| (at, e)));
+                }
+            }
+            Command::DeleteContour(id) => {
+                if self.ensure_run() {
+                    let at = self.shown;
+                    let run = self.run.as_mut().expect("ensured");
+                    run.edit_at(at, |ev| {
+                        ev.delete_contour(crate::contours::ContourId(id));
+                        Vec::new()
+                    });
+                    self.selected_contour = None;
+                }
+            }
+            Command::SelectContour(id) => self.selected_contour = id,
             Command::Undo => {
                 let now = self.snapshot();
                 match self.history.undo(now) {

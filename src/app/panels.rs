@@ -62,6 +62,7 @@ pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
                 ("Rectangle", Tool::Rect),
                 ("Polygon", Tool::Polygon),
                 ("Select", Tool::Select),
+                ("Edit", Tool::Edit),
             ] {
                 if ui
                     .selectable_label(app.settings.tool == tool, label)
@@ -202,6 +203,22 @@ pub fn bottom_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
         ui.horizontal(|ui| {
             let rec = app.shown_record();
             let (frame, verts, contours, area) = rec.map_or((0, 0, 0, 0.0), |r| (r.index, r.vertices, r.contours, r.area));
+            // The contour selected with the Edit tool, measured.
+            if let Some(r) = app
+                .selected_contour
+                .and_then(|id| rec.and_then(|rec| rec.rings.iter().find(|r| r.id == id)))
+            {
+                let a = crate::geometry::signed_area(&r.points).abs();
+                let p: f64 = (0..r.points.len())
+                    .map(|i| r.points[i].dist(r.points[(i + 1) % r.points.len()]))
+                    .sum();
+                ui.label(format!(
+                    "contour {}{}: area {a:.1} px², perimeter {p:.1} px, circularity {:.3}",
+                    r.id,
+                    if r.hole { " (hole)" } else { "" },
+                    4.0 * std::f64::consts::PI * a / (p * p).max(1e-9)
+                ));
+            }
             ui.label(format!(
                 "{}  |  frame {frame}  |  {verts} vertices  |  {contours} contours  |  area {area:.0} px²  |  step {:.2} ms  draw {:.2} ms{}",
                 app.image_name,

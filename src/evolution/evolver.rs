@@ -641,6 +641,87 @@ impl Evolver {
         }
     }
 
+    /// A hand edit: moves vertex `v` towards `to` (clamped to the image) through the
+    /// topology core, in steps of a quarter of the edge bound with the moving vertex's
+    /// edges split ahead of it, so every step is an ordinary motion region: dragging one
+    /// contour onto another merges them, pinching one splits it, closing a gap makes a
+    /// hole — exactly, and the events are logged at the current frame. A converged run
+    /// stays converged: the user's edit is final unless they play on. In the
+    /// topology-keeping modes the contour stops short of the others instead. Returns
+    /// the events; the vertex may be gone afterwards (its ring vanished). Not in
+    /// `Mode::Implicit`, whose contours are extracted from a grid (returns no event).
+    pub fn hand_move(&mut self, v: u32, to: Point) -> Vec<TopologyEvent> {
+        let mut events = Vec::new();
+        if self.params.mode == Mode::Implicit || !self.set.is_alive(v) {
+            return events;
+        }
+        let to = self.bounds.clamp(to);
+        let scale = Pyramid::scale(self.level);
+        let bound = self.set.max_edge();
+        let step = 0.25 * bound;
+        let from = self.set.position(v);
+        let n = (from.dist(to) / step).ceil().max(1.0) as usize;
+        let gap = PRESERVE_GAP * scale;
+        for k in 1..=n {
+            if !self.set.is_alive(v) {
+                break;
+            }
+            // Split the moving vertex's edges that this step could stretch past the bound.
+            for a in [self.set.prev(v), v] {
+                let b = self.set.next(a);
+                if self.set.position(a).dist(self.set.position(b)) > bound - step {
+                    let _ = self.set.insert_vertex(a, 0.5);
+                }
+            }
+            let target = from.lerp(to, k as f64 / n as f64);
+            let moved = if self.params.mode == Mode::Preserve {
+                self.set
+                    .move_vertex_preserving(v, target, gap)
+                    .map(|_| Vec::new())
+            } else {
+                self.set.move_vertex(v, target)
+            };
+            match moved {
+                Ok(ev) => events.extend(ev),
+                Err(_) => break,
+            }
+        }
+        let gap = (self.params.mode == Mode::Preserve).then_some(gap);
+        remesh(
+            &mut self.set,
+            scale,
+            2.0 * std::f64::consts::SQRT_2 * scale,
+            gap,
+            &mut events,
+        );
+        self.log_events(&events);
+        events
+    }
+
+    /// Deletes contour `id` (an outer ring with its holes, or one hole): a hand edit.
+    pub fn delete_contour(&mut self, id: crate::contours::ContourId) {
+        let holes: Vec<_> = self
+            .set
+            .parents()
+            .into_iter()
+            .filter(|&(_, p)| p == Some(id))
+            .map(|(h, _)| h)
+            .collect();
+        for h in holes {
+            self.set.remove_ring(h);
+        }
+        self.set.remove_ring(id);
+    }
+
+    fn log_events(&mut self, events: &[TopologyEvent]) {
+        for &e in events {
+            self.events.push(FrameEvent {
+                frame: self.frame,
+                event: e,
+            });
+        }
+    }
+
     /// Drops outer regions (with their holes) and holes smaller than `min_area`: the
     /// clutter filter of seed 003 §4.
     pub fn filter_clutter(&mut self) {
