@@ -330,15 +330,7 @@ fn export_labels_and_roi_set() {
 /// parameters, frame and contours.
 #[test]
 fn session_save_then_open_gives_the_same_state() {
-    let mut app = TopoApp::default();
-    app.send(Command::OpenImage(case_image("bridge_merge")));
-    app.send(Command::SetPolarity(
-        topocontour::evolution::Polarity::Bright,
-    ));
-    app.send(Command::AddShape(Shape::Disk {
-        center: topocontour::Point::new(60.0, 64.0),
-        radius: 6.0,
-    }));
+    let mut app = bright_bridge_with_seeds(&[(60.0, 64.0, 6.0)]);
     app.send(Command::WrapBorder(4.0));
     app.send(Command::Step(25));
     let mut h = harness(app);
@@ -486,6 +478,22 @@ fn a_twelve_bit_image_opens_with_its_own_contrast() {
     assert!(lo < 0.01 && hi > 0.05 && hi < 0.07, "{lo} {hi}");
 }
 
+/// The app on the bridge_merge image, bright objects, with seed disks (x, y, r).
+fn bright_bridge_with_seeds(disks: &[(f64, f64, f64)]) -> TopoApp {
+    let mut app = TopoApp::default();
+    app.send(Command::OpenImage(case_image("bridge_merge")));
+    app.send(Command::SetPolarity(
+        topocontour::evolution::Polarity::Bright,
+    ));
+    for &(x, y, r) in disks {
+        app.send(Command::AddShape(Shape::Disk {
+            center: topocontour::Point::new(x, y),
+            radius: r,
+        }));
+    }
+    app
+}
+
 /// The vertex of the run's contours nearest to `p`.
 fn vertex_near(app: &TopoApp, p: topocontour::Point) -> u32 {
     let set = app.run.as_ref().expect("a run").evolver.contours();
@@ -499,17 +507,8 @@ fn vertex_near(app: &TopoApp, p: topocontour::Point) -> u32 {
 /// logged as events, and Undo takes the edit back.
 #[test]
 fn hand_edits_merge_and_split_exactly() {
-    use topocontour::evolution::Polarity;
     use topocontour::{Point, TopologyEvent};
-    let mut app = TopoApp::default();
-    app.send(Command::OpenImage(case_image("bridge_merge")));
-    app.send(Command::SetPolarity(Polarity::Bright));
-    for x in [40.0, 75.0] {
-        app.send(Command::AddShape(Shape::Disk {
-            center: Point::new(x, 64.0),
-            radius: 10.0,
-        }));
-    }
+    let mut app = bright_bridge_with_seeds(&[(40.0, 64.0, 10.0), (75.0, 64.0, 10.0)]);
     app.send(Command::Step(1));
     app.send(Command::SeekFrame(0));
     let mut h = harness(app);

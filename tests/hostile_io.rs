@@ -63,6 +63,13 @@ fn others(dir: &Path, keep: &[&Path]) -> Vec<PathBuf> {
         .collect()
 }
 
+/// `segment INPUT --wrap 4 --object dark` followed by `extra`.
+fn wrapped<'a>(input: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
+    let mut v = vec!["segment", input, "--wrap", "4", "--object", "dark"];
+    v.extend_from_slice(extra);
+    v
+}
+
 fn mkfifo(path: &Path) {
     let ok = Command::new("mkfifo").arg(path).status().unwrap().success();
     assert!(ok, "mkfifo {}", path.display());
@@ -109,19 +116,7 @@ fn an_output_naming_the_input_is_refused_before_anything_is_written() {
         ("--svg", link.clone()),
         ("--csv", hard.clone()),
     ] {
-        expect_refused(
-            &[
-                "segment",
-                s(&input),
-                "--wrap",
-                "4",
-                "--object",
-                "dark",
-                flag,
-                s(&out),
-            ],
-            "input image",
-        );
+        expect_refused(&wrapped(s(&input), &[flag, s(&out)]), "input image");
         assert_eq!(
             std::fs::read(&input).unwrap(),
             before,
@@ -144,35 +139,13 @@ fn one_path_for_two_outputs_is_refused() {
     let (d, input) = workdir("twice");
     let out = d.join("out");
     expect_refused(
-        &[
-            "segment",
-            s(&input),
-            "--wrap",
-            "4",
-            "--object",
-            "dark",
-            "--json",
-            s(&out),
-            "--svg",
-            s(&out),
-        ],
+        &wrapped(s(&input), &["--json", s(&out), "--svg", s(&out)]),
         "two outputs",
     );
     // The same file spelled two ways.
     let other = d.join(".").join("out");
     expect_refused(
-        &[
-            "segment",
-            s(&input),
-            "--wrap",
-            "4",
-            "--object",
-            "dark",
-            "--json",
-            s(&out),
-            "--csv",
-            s(&other),
-        ],
+        &wrapped(s(&input), &["--json", s(&out), "--csv", s(&other)]),
         "two outputs",
     );
     assert_eq!(others(&d, &[&input]), Vec::<PathBuf>::new());
@@ -184,51 +157,18 @@ fn special_files_as_outputs_stay_special() {
     let fifo = d.join("out.json");
     mkfifo(&fifo);
     expect_refused(
-        &[
-            "segment",
-            s(&input),
-            "--wrap",
-            "4",
-            "--object",
-            "dark",
-            "--json",
-            s(&fifo),
-        ],
+        &wrapped(s(&input), &["--json", s(&fifo)]),
         "not a regular file",
     );
     assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo());
     for dev in ["/dev/null", "/dev/full"] {
-        expect_refused(
-            &[
-                "segment",
-                s(&input),
-                "--wrap",
-                "4",
-                "--object",
-                "dark",
-                "--json",
-                dev,
-            ],
-            "not a regular file",
-        );
+        expect_refused(&wrapped(s(&input), &["--json", dev]), "not a regular file");
         assert!(
             std::fs::metadata(dev).unwrap().file_type().is_char_device(),
             "{dev}"
         );
     }
-    expect_refused(
-        &[
-            "segment",
-            s(&input),
-            "--wrap",
-            "4",
-            "--object",
-            "dark",
-            "--svg",
-            s(&d),
-        ],
-        "not a regular file",
-    );
+    expect_refused(&wrapped(s(&input), &["--svg", s(&d)]), "not a regular file");
     assert_eq!(others(&d, &[&input, &fifo]), Vec::<PathBuf>::new());
 }
 
@@ -239,18 +179,7 @@ fn an_unwritable_second_output_leaves_no_first() {
     for second in [d.join("missing-folder/out.svg"), d.join("sub")] {
         std::fs::create_dir_all(d.join("sub")).unwrap();
         expect_refused(
-            &[
-                "segment",
-                s(&input),
-                "--wrap",
-                "4",
-                "--object",
-                "dark",
-                "--json",
-                s(&first),
-                "--svg",
-                s(&second),
-            ],
+            &wrapped(s(&input), &["--json", s(&first), "--svg", s(&second)]),
             "cannot write",
         );
         assert!(!first.exists());
@@ -420,18 +349,7 @@ fn usage_errors_are_one_line() {
         "3 comma-separated",
     );
     expect_refused(&["segment", s(&input), "--wrap", "4"], "--object");
-    expect_refused(
-        &[
-            "segment",
-            s(&input),
-            "--wrap",
-            "4",
-            "--object",
-            "dark",
-            "--frobnicate",
-        ],
-        "frobnicate",
-    );
+    expect_refused(&wrapped(s(&input), &["--frobnicate"]), "frobnicate");
     expect_refused(&["frobnicate"], "frobnicate");
 }
 
@@ -497,16 +415,7 @@ fn a_successful_run_leaves_only_its_outputs() {
     let long = "x".repeat(250);
     let json = d.join(format!("{long}.json"));
     let out = run_within(
-        bin().args([
-            "segment",
-            s(&input),
-            "--wrap",
-            "4",
-            "--object",
-            "dark",
-            "--json",
-            s(&json),
-        ]),
+        bin().args(wrapped(s(&input), &["--json", s(&json)])),
         Duration::from_secs(5),
     );
     assert!(
