@@ -12,4 +12,5 @@ out=screenshots
 home=$(mktemp -d)   # fresh settings: the shots show the defaults
 export HOME="$home" XDG_DATA_HOME="$home/data" XDG_CONFIG_HOME="$home/config"
 xvfb-run -a -s "-screen 0 1280x820x24" bash screenshots/session.sh "$out"
+xvfb-run -a -s "-screen 0 1280x820x24" bash screenshots/workbench.sh "$out"
 rm -rf "$home"

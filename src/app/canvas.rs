@@ -29,20 +29,6 @@ pub struct CanvasState {
     fill_cache: Option<(usize, usize, fill::FillMesh)>,
 }
 
-/// The vertex of `set` nearest to `at` within `tol` pixels.
-fn nearest_vertex(set: &crate::contours::ContourSet, at: Point, tol: f64) -> Option<u32> {
-    let mut near = Vec::new();
-    set.vertices_near(
-        &crate::geometry::Aabb { min: at, max: at }.expand(tol),
-        &mut near,
-    );
-    near.into_iter()
-        .map(|v| (v, set.position(v).dist(at)))
-        .filter(|&(_, d)| d <= tol)
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|(v, _)| v)
-}
-
 /// The innermost ring of the frame on screen around `at` (a hole inside a region wins).
 fn contour_at(rings: &[super::RingView], at: Point) -> Option<u32> {
     rings
@@ -56,6 +42,11 @@ fn contour_at(rings: &[super::RingView], at: Point) -> Option<u32> {
 }
 
 impl CanvasState {
+    /// After a hand edit: the vertex that now leads the drag (none: it is over).
+    pub fn set_drag_lead(&mut self, lead: Option<u32>) {
+        self.editing = lead;
+    }
+
     /// Drops the polygon being drawn.
     pub fn cancel_polygon(&mut self) {
         self.polygon.clear();
@@ -332,12 +323,16 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
                 app.commands.push(Command::Select(cs.moving));
             }
             if tool == Tool::Edit {
-                // The vertex under the pointer in the frame on screen (the run is put
-                // back at that frame, so later frames start from the edit).
+                // The vertex under the press (a drag starts a few pixels later) in the
+                // frame on screen; the run is put back at that frame, so later frames
+                // start from the edit.
+                let at = ui
+                    .input(|i| i.pointer.press_origin())
+                    .map_or(at, image_from_screen);
                 let shown = app.shown;
                 cs.editing = app.run.as_mut().and_then(|run| {
                     run.rewind(shown.min(run.history.len() - 1));
-                    nearest_vertex(run.evolver.contours(), at, 8.0 / zoom as f64)
+                    run.evolver.vertex_near(at, 8.0 / zoom as f64)
                 });
             }
         }
@@ -346,10 +341,8 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
         if let (Some(p), Some(_)) = (pointer, cs.drag_from_in_image) {
             cs.drag_to_in_image = Some(image_from_screen(p));
             if let (Tool::Edit, Some(v)) = (tool, cs.editing) {
-                app.commands.push(Command::HandMove {
-                    vertex: v,
-                    to: image_from_screen(p),
-                });
+                let to = image_from_screen(p);
+                app.commands.push(Command::HandMove { vertex: v, to });
             }
         }
     }

@@ -599,7 +599,14 @@ impl TopoApp {
                 if self.ensure_run() {
                     let at = self.shown;
                     let run = self.run.as_mut().expect("ensured");
-                    let events = run.edit_at(at, |ev| ev.hand_move(vertex, to));
+                    let mut lead = None;
+                    let events = run.edit_at(at, |ev| {
+                        let (events, l) = ev.hand_drag(vertex, to);
+                        lead = l;
+                        events
+                    });
+                    // The drag goes on with the vertex that leads now.
+                    self.canvas.set_drag_lead(lead);
                     self.log.retain(|(f, _)| *f <= at);
                     self.log.extend(events.into_iter().map(|e| (at, e)));
                 }

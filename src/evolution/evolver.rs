@@ -73,6 +73,9 @@ impl Mode {
 /// at most √2 pixels).
 const IMPLICIT_MAX_EDGE: f64 = 2.0;
 
+/// Vertices on each side that follow a hand-dragged vertex (with weights falling to 0).
+const HAND_FOLLOW: usize = 3;
+
 /// Gap kept between contours in `Mode::Preserve`, in grid spacings of the level.
 const PRESERVE_GAP: f64 = 0.3;
 
@@ -643,18 +646,31 @@ impl Evolver {
 
     /// A hand edit: moves vertex `v` towards `to` (clamped to the image) through the
     /// topology core, in steps of a quarter of the edge bound with the moving vertex's
-    /// edges split ahead of it, so every step is an ordinary motion region: dragging one
+    /// edges split ahead of it and its three neighbours on each side following with
+    /// weights ¾, ½, ¼ (a tongue, not a spike), so every step is an ordinary motion
+    /// region (a degenerate one is retried at half and a quarter length): dragging one
     /// contour onto another merges them, pinching one splits it, closing a gap makes a
     /// hole — exactly, and the events are logged at the current frame. A converged run
     /// stays converged: the user's edit is final unless they play on. In the
     /// topology-keeping modes the contour stops short of the others instead. Returns
-    /// the events; the vertex may be gone afterwards (its ring vanished). Not in
-    /// `Mode::Implicit`, whose contours are extracted from a grid (returns no event).
+    /// the events. Not in `Mode::Implicit`, whose contours are extracted from a grid
+    /// (returns no event). The vertex may be gone afterwards (a merge, or the remesh
+    /// joined it to a neighbour): [`Evolver::vertex_near`] finds the one that took its
+    /// place, for a drag to continue.
     pub fn hand_move(&mut self, v: u32, to: Point) -> Vec<TopologyEvent> {
+        self.hand_drag(v, to).0
+    }
+
+    /// [`Evolver::hand_move`] for a drag: also returns the vertex that leads at the end.
+    /// When the lead vanishes without a topology event (the edge splits and neighbours
+    /// crowd it; a remesh joins it to one), the vertex of its contour nearest to where it
+    /// was takes over; after a merge or split the drag has done its work (`None`).
+    pub fn hand_drag(&mut self, v: u32, to: Point) -> (Vec<TopologyEvent>, Option<u32>) {
         let mut events = Vec::new();
         if self.params.mode == Mode::Implicit || !self.set.is_alive(v) {
-            return events;
+            return (events, None);
         }
+        let mut v = v;
         let to = self.bounds.clamp(to);
         let scale = Pyramid::scale(self.level);
         let bound = self.set.max_edge();
@@ -666,6 +682,8 @@ impl Evolver {
             if !self.set.is_alive(v) {
                 break;
             }
+            let (contour, was) = (self.set.contour_of(v), self.set.position(v));
+            let before = events.len();
             // Split the moving vertex's edges that this step could stretch past the bound.
             for a in [self.set.prev(v), v] {
                 let b = self.set.next(a);
@@ -674,19 +692,70 @@ impl Evolver {
                 }
             }
             let target = from.lerp(to, k as f64 / n as f64);
-            let moved = if self.params.mode == Mode::Preserve {
-                self.set
-                    .move_vertex_preserving(v, target, gap)
-                    .map(|_| Vec::new())
-            } else {
-                self.set.move_vertex(v, target)
-            };
-            match moved {
-                Ok(ev) => events.extend(ev),
-                Err(_) => break,
+            let d = target - self.set.position(v);
+            // The vertex leads; its neighbours follow with falling weights, so the drag
+            // pulls a tongue, not a one-vertex spike whose two edges are nearly parallel
+            // (such a spike meets other contours only in degenerate crossings).
+            let (mut p, mut q) = (v, v);
+            let mut chain = vec![(v, 1.0)];
+            for i in 1..=HAND_FOLLOW {
+                p = self.set.prev(p);
+                q = self.set.next(q);
+                if p == q || p == v {
+                    break;
+                }
+                let w = 1.0 - i as f64 / (HAND_FOLLOW + 1) as f64;
+                chain.extend([(p, w), (q, w)]);
+            }
+            let mut lead_moved = true;
+            for (u, w) in chain {
+                if !self.set.is_alive(u) {
+                    continue;
+                }
+                let at = self.set.position(u);
+                let mut done = false;
+                for f in [1.0, 0.5, 0.25] {
+                    let goal = self.bounds.clamp(at + d * (w * f));
+                    let moved = if self.params.mode == Mode::Preserve {
+                        self.set
+                            .move_vertex_preserving(u, goal, gap)
+                            .map(|_| Vec::new())
+                    } else {
+                        self.set.move_vertex(u, goal)
+                    };
+                    match moved {
+                        Ok(ev) => {
+                            events.extend(ev);
+                            done = true;
+                            break;
+                        }
+                        Err(MoveError::Degenerate(_)) => continue,
+                        Err(_) => break,
+                    }
+                }
+                if u == v {
+                    lead_moved = done;
+                }
+            }
+            if !lead_moved {
+                break;
+            }
+            if !self.set.is_alive(v) && events.len() == before {
+                let Some(u) = self
+                    .vertex_near(was, 2.0 * bound)
+                    .filter(|&u| self.set.contour_of(u) == contour)
+                else {
+                    break;
+                };
+                v = u;
             }
         }
         let gap = (self.params.mode == Mode::Preserve).then_some(gap);
+        let at = self
+            .set
+            .is_alive(v)
+            .then(|| (self.set.position(v), self.set.contour_of(v)));
+        let before = events.len();
         remesh(
             &mut self.set,
             scale,
@@ -695,7 +764,26 @@ impl Evolver {
             &mut events,
         );
         self.log_events(&events);
-        events
+        let lead = match at {
+            Some(_) if self.set.is_alive(v) => Some(v),
+            Some((p, c)) if events.len() == before => self
+                .vertex_near(p, 2.0 * self.set.max_edge())
+                .filter(|&u| self.set.contour_of(u) == c),
+            _ => None,
+        };
+        (events, lead)
+    }
+
+    /// The vertex nearest to `at` within `tol` pixels, if any.
+    pub fn vertex_near(&self, at: Point, tol: f64) -> Option<u32> {
+        let mut near = Vec::new();
+        self.set
+            .vertices_near(&Aabb { min: at, max: at }.expand(tol), &mut near);
+        near.into_iter()
+            .map(|v| (v, self.set.position(v).dist(at)))
+            .filter(|&(_, d)| d <= tol)
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(v, _)| v)
     }
 
     /// Deletes contour `id` (an outer ring with its holes, or one hole): a hand edit.
