@@ -103,8 +103,9 @@ fn a_split_appears_in_the_event_log_and_clicking_it_shows_that_frame() {
         .iter()
         .find(|(_, e)| e.kind() == "split")
         .expect("a split was logged");
-    let ids: Vec<String> = event.contours().iter().map(|c| c.to_string()).collect();
-    let text = format!("frame {frame}: split [{}]", ids.join(", "));
+    // Events are named by object: "object 3 split into 3 and 7".
+    let text = format!("frame {frame}: {}", event.describe());
+    assert!(text.contains("split into"), "{text}");
     h.step(); // draw the log as it is after the last step
     h.get_by_label(&text).click();
     h.step();

@@ -234,7 +234,12 @@ fn svg_renders_like_the_mask_and_geojson_parses() {
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(
         lines[0],
-        "id,area,perimeter,circularity,centroid_x,centroid_y,holes"
+        "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes"
+    );
+    assert!(
+        lines[1].starts_with("\"image.png\","),
+        "the image named: {}",
+        lines[1]
     );
     assert_eq!(lines.len(), 2);
     assert!(lines[1].ends_with(",2"));

@@ -896,7 +896,8 @@ impl TopoApp {
             frames: ev.frames(),
             converged: ev.is_converged(),
             events: ev.events(),
-            mode: ev.params().mode.name(),
+            image: &self.image_name,
+            params: ev.params(),
             held: ev.held_contacts(),
         };
         let bytes = match kind {

@@ -299,13 +299,7 @@ pub fn side_panel(app: &mut TopoApp, ui: &mut egui::Ui) {
                             .max_height(220.0)
                             .show(ui, |ui| {
                                 for (frame, e) in &app.log {
-                                    let ids: Vec<String> =
-                                        e.contours().iter().map(|c| c.to_string()).collect();
-                                    let text = format!(
-                                        "frame {frame}: {} [{}]",
-                                        e.kind().replace('_', " "),
-                                        ids.join(", ")
-                                    );
+                                    let text = format!("frame {frame}: {}", e.describe());
                                     if ui.selectable_label(app.shown == *frame, text).clicked() {
                                         seek = Some(*frame);
                                     }

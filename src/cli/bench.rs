@@ -62,7 +62,7 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
         for _ in 0..b.runs.max(1) {
             let t = std::time::Instant::now();
             let (ev, image, _) = evolve(&args.image, &args.run)?;
-            let out = outputs(&ev, image.width, image.height);
+            let out = outputs(&ev, image.width, image.height, "");
             std::hint::black_box((out.json(), out.mask_png()));
             times.push(t.elapsed().as_secs_f64() * 1e3);
             frames = ev.frames();

@@ -213,8 +213,13 @@ pub(super) fn evolve(
     Ok((ev, image, shapes))
 }
 
-/// The finished run, ready to export.
-pub(super) fn outputs(ev: &Evolver, width: usize, height: usize) -> Outputs<'_> {
+/// The finished run of the image `name` (a file name), ready to export.
+pub(super) fn outputs<'a>(
+    ev: &'a Evolver,
+    width: usize,
+    height: usize,
+    name: &'a str,
+) -> Outputs<'a> {
     Outputs {
         set: ev.contours(),
         width,
@@ -222,7 +227,15 @@ pub(super) fn outputs(ev: &Evolver, width: usize, height: usize) -> Outputs<'_> 
         frames: ev.frames(),
         converged: ev.is_converged(),
         events: ev.events(),
-        mode: ev.params().mode.name(),
+        image: name,
+        params: ev.params(),
         held: ev.held_contacts(),
     }
+}
+
+/// The file name of `path` (what outputs record of the image).
+pub(super) fn file_name(path: &Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
 }

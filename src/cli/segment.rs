@@ -1,7 +1,7 @@
 //! `topocontour segment IMAGE …`: one image, the outputs the flags name, all written or
 //! none; and the evaluation case folders' `case.json`.
 
-use super::run::{evolve, outputs, RunSettings};
+use super::run::{evolve, file_name, outputs, RunSettings};
 use super::{bad, note, Failure};
 use crate::evolution::{Evolver, Modality, Polarity};
 use crate::io::session::Session;
@@ -165,12 +165,13 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
     paths.extend(a.save_session.as_deref());
     let files = OutputFiles::prepare(Some(&a.image), &paths).map_err(|e| bad(e.to_string()))?;
     let (ev, image, shapes) = evolve(&a.image, &a.run)?;
-    let out = outputs(&ev, image.width, image.height);
+    let name = file_name(&a.image);
+    let out = outputs(&ev, image.width, image.height, &name);
     if out.held > 0 {
         // The user asked for fixed topology; say where it mattered.
         note(&format!(
             "note: mode {} kept the initial topology ({} contours); fronts were held apart at {} places where adaptive mode would merge, split or close holes",
-            out.mode,
+            out.params.mode.name(),
             ev.contours().contour_count(),
             out.held
         ));
@@ -215,7 +216,8 @@ pub fn replay(a: &ReplayArgs) -> Result<Evolver, Failure> {
     let files = OutputFiles::prepare(Some(&image_path), &paths).map_err(|e| bad(e.to_string()))?;
     let (mut ev, image) = session.replay(&a.session).map_err(|e| bad(e.to_string()))?;
     ev.filter_clutter();
-    let out = outputs(&ev, image.width, image.height);
+    let name = file_name(&image_path);
+    let out = outputs(&ev, image.width, image.height, &name);
     write_outputs(files, &wanted, &out, &image, None)?;
     Ok(ev)
 }

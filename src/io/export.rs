@@ -14,8 +14,10 @@ pub struct Outputs<'a> {
     pub frames: usize,
     pub converged: bool,
     pub events: &'a [FrameEvent],
-    /// Engine name (`adaptive`, `preserve`, `implicit`).
-    pub mode: &'a str,
+    /// The image's file name (recorded in the JSON and the CSV).
+    pub image: &'a str,
+    /// The parameters of the run (recorded in the JSON; `mode` names the engine).
+    pub params: &'a crate::evolution::Params,
     /// Places where a topology-keeping engine held fronts apart (0 when adaptive).
     pub held: usize,
 }
@@ -45,7 +47,8 @@ impl Outputs<'_> {
         let events: Vec<_> = self.events.iter().map(|e| json!({"frame": e.frame, "kind": e.event.kind(), "contours": e.event.contours()})).collect();
         let doc = json!({
             "width": self.width, "height": self.height, "frames": self.frames, "converged": self.converged,
-            "contours": contours, "events": events, "mode": self.mode, "held": self.held,
+            "contours": contours, "events": events, "mode": self.params.mode.name(), "held": self.held,
+            "image": self.image, "params": self.params,
         });
         serde_json::to_string(&doc).expect("JSON of plain data")
     }
@@ -244,10 +247,12 @@ impl Outputs<'_> {
 
     /// Measurements, one row per region.
     pub fn csv(&self) -> String {
-        let mut s = String::from("id,area,perimeter,circularity,centroid_x,centroid_y,holes\n");
+        let mut s =
+            String::from("image,id,area,perimeter,circularity,centroid_x,centroid_y,holes\n");
+        let image = format!("\"{}\"", self.image.replace('"', "\"\""));
         for r in regions(self.set) {
             s.push_str(&format!(
-                "{},{},{},{},{},{},{}\n",
+                "{image},{},{},{},{},{},{},{}\n",
                 r.id,
                 fmt(r.area),
                 fmt(r.perimeter),

@@ -31,6 +31,26 @@ pub enum TopologyEvent {
 }
 
 impl TopologyEvent {
+    /// The event in words, naming the objects (contours) by id, as the app's log shows
+    /// it: "object 3 split into 3 and 7".
+    pub fn describe(&self) -> String {
+        match *self {
+            TopologyEvent::Split { from, new } => {
+                format!("object {from} split into {from} and {new}")
+            }
+            TopologyEvent::Merge { into, absorbed } => {
+                format!("object {absorbed} merged into {into}")
+            }
+            TopologyEvent::HoleMade { from, hole } => format!("object {from} made hole {hole}"),
+            TopologyEvent::HoleGone { hole, into: None } => format!("hole {hole} filled"),
+            TopologyEvent::HoleGone {
+                hole,
+                into: Some(i),
+            } => format!("hole {hole} opened into {i}"),
+            TopologyEvent::Vanished { contour } => format!("object {contour} vanished"),
+        }
+    }
+
     /// Short name as used in JSON and the app's log: split, merge, hole_made, hole_gone,
     /// vanished.
     pub fn kind(&self) -> &'static str {
