@@ -177,41 +177,128 @@ pub fn box_mean(f: &Field, r: usize) -> Field {
 }
 
 /// The maximum (`max` true) or minimum over the (2r+1)² box around each pixel, the box
-/// cut to the image: rows, then columns, each with a monotone deque.
+/// cut to the image. Separable, each pass by van Herk and Gil-Werman: in blocks of 2r + 1
+/// a running extreme from the block's start and one from its end, so every window is one
+/// comparison of two of them (O(1) per pixel, whatever r). Each pass runs on whole rows
+/// at once (element-wise; the horizontal one on the transposed image), so it reads
+/// memory in order and vectorises.
 pub fn box_extreme(f: &Field, r: usize, max: bool) -> Field {
+    // Monomorphised per extreme, so the comparisons inline and vectorise.
+    if max {
+        box_extreme_with(f, r, f32::max, f32::NEG_INFINITY)
+    } else {
+        box_extreme_with(f, r, f32::min, f32::INFINITY)
+    }
+}
+
+fn box_extreme_with(
+    f: &Field,
+    r: usize,
+    pick: impl Fn(f32, f32) -> f32 + Copy,
+    identity: f32,
+) -> Field {
     let (w, h) = (f.width, f.height);
-    let better = |a: f32, b: f32| if max { a >= b } else { a <= b };
-    // One line of `n` values at `get(i)`, written by `put(i, v)`.
-    let mut deque = std::collections::VecDeque::new();
-    let mut line = |n: usize, get: &dyn Fn(usize) -> f32, put: &mut dyn FnMut(usize, f32)| {
-        deque.clear();
-        let mut next = 0;
-        for i in 0..n {
-            while next < n && next <= i + r {
-                let v = get(next);
-                while deque.back().is_some_and(|&(_, b)| better(v, b)) {
-                    deque.pop_back();
-                }
-                deque.push_back((next, v));
-                next += 1;
-            }
-            while deque.front().is_some_and(|&(j, _)| j + r < i) {
-                deque.pop_front();
-            }
-            put(i, deque.front().expect("window holds i").1);
-        }
-    };
-    let mut rows = vec![0f32; w * h];
-    for y in 0..h {
-        let src = &f.data[y * w..(y + 1) * w];
-        let dst = &mut rows[y * w..(y + 1) * w];
-        line(w, &|i| src[i], &mut |i, v| dst[i] = v);
-    }
-    let mut out = vec![0f32; w * h];
-    for x in 0..w {
-        line(h, &|i| rows[i * w + x], &mut |i, v| out[i * w + x] = v);
-    }
+    let (mut out, mut ahead, mut behind) = (Vec::new(), Vec::new(), Vec::new());
+    // Horizontal: on the transposed image the columns are rows, extremised as whole
+    // vectors like the vertical pass (a pass along each short row does not vectorise).
+    let columns = transpose(&f.data, w, h);
+    extreme_1d(
+        &columns,
+        h,
+        r,
+        pick,
+        identity,
+        &mut out,
+        &mut ahead,
+        &mut behind,
+    );
+    let rows = transpose(&out, h, w);
+    extreme_1d(
+        &rows,
+        w,
+        r,
+        pick,
+        identity,
+        &mut out,
+        &mut ahead,
+        &mut behind,
+    );
     Field::new(w, h, out)
+}
+
+/// `data` (`h` rows of `w`) with rows and columns exchanged (`w` rows of `h`).
+fn transpose(data: &[f32], w: usize, h: usize) -> Vec<f32> {
+    let mut t = vec![0f32; w * h];
+    // In tiles, so both sides stay in cache.
+    const T: usize = 32;
+    for y0 in (0..h).step_by(T) {
+        for x0 in (0..w).step_by(T) {
+            for y in y0..(y0 + T).min(h) {
+                for x in x0..(x0 + T).min(w) {
+                    t[x * h + y] = data[y * w + x];
+                }
+            }
+        }
+    }
+    t
+}
+
+/// The running extreme over windows of 2r + 1 items of `src`, an item being `width`
+/// consecutive values (extremised element-wise), items cut at both ends; into `out`.
+#[allow(clippy::too_many_arguments)]
+fn extreme_1d(
+    src: &[f32],
+    width: usize,
+    r: usize,
+    pick: impl Fn(f32, f32) -> f32 + Copy,
+    identity: f32,
+    out: &mut Vec<f32>,
+    ahead: &mut Vec<f32>,
+    behind: &mut Vec<f32>,
+) {
+    let n = src.len() / width;
+    let k = 2 * r + 1;
+    // Padded with r identity items on each side, rounded up to whole blocks.
+    let padded = (n + 2 * r).div_ceil(k) * k;
+    let item = |i: usize| -> Option<&[f32]> {
+        (i >= r && i - r < n).then(|| &src[(i - r) * width..(i - r + 1) * width])
+    };
+    ahead.clear();
+    ahead.resize(padded * width, identity);
+    behind.clear();
+    behind.resize(padded * width, identity);
+    for i in 0..padded {
+        let (cur, prev) = (i * width, i.checked_sub(1).filter(|_| i % k != 0));
+        if let Some(v) = item(i) {
+            ahead[cur..cur + width].copy_from_slice(v);
+        }
+        if let Some(p) = prev {
+            for j in 0..width {
+                ahead[cur + j] = pick(ahead[cur + j], ahead[p * width + j]);
+            }
+        }
+    }
+    for i in (0..padded).rev() {
+        let cur = i * width;
+        if let Some(v) = item(i) {
+            behind[cur..cur + width].copy_from_slice(v);
+        }
+        if (i + 1) % k != 0 && i + 1 < padded {
+            for j in 0..width {
+                behind[cur + j] = pick(behind[cur + j], behind[cur + width + j]);
+            }
+        }
+    }
+    // Window of output item o is padded items [o, o + 2r]: behind[o] covers to its
+    // block's end, ahead[o + 2r] from that block's start (the two overlap or meet).
+    out.clear();
+    out.resize(n * width, identity);
+    for o in 0..n {
+        let (b, a) = (o * width, (o + 2 * r) * width);
+        for j in 0..width {
+            out[o * width + j] = pick(behind[b + j], ahead[a + j]);
+        }
+    }
 }
 
 /// The local decision level T(x) of one pyramid level, with the local half contrast
