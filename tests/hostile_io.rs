@@ -283,28 +283,8 @@ fn a_full_or_closed_stderr_keeps_the_exit_codes() {
             .open("/dev/full")
             .unwrap()
     };
-    let bad = [
-        "segment",
-        s(&input),
-        "--wrap",
-        "4",
-        "--object",
-        "dark",
-        "--json",
-        "/dev/full",
-    ];
-    let ok = [
-        "segment",
-        s(&input),
-        "--wrap",
-        "4",
-        "--object",
-        "dark",
-        "--mode",
-        "preserve",
-        "--json",
-        s(&json),
-    ];
+    let bad = wrapped(s(&input), &["--json", "/dev/full"]);
+    let ok = wrapped(s(&input), &["--mode", "preserve", "--json", s(&json)]);
     let code = |args: &[&str], stderr: Stdio| {
         let st = bin()
             .args(args)
@@ -369,18 +349,10 @@ fn kill_9_never_leaves_a_corrupt_output() {
         seed ^= seed << 17;
         let delay = Duration::from_micros(seed % 15_000);
         let mut child = bin()
-            .args([
-                "segment",
+            .args(wrapped(
                 s(&input),
-                "--wrap",
-                "4",
-                "--object",
-                "dark",
-                "--json",
-                s(&json),
-                "--mask",
-                s(&mask),
-            ])
+                &["--json", s(&json), "--mask", s(&mask)],
+            ))
             .stderr(Stdio::null())
             .spawn()
             .unwrap();

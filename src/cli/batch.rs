@@ -171,14 +171,15 @@ fn one_image(img: &Path, a: &BatchArgs) -> ImageResult {
 /// (0–1 of the image's full scale) over the region's pixels.
 fn summary_rows(name: &str, out: &Outputs, image: &crate::evolution::Field) -> Vec<String> {
     let labels = out.labels();
-    let n = regions(out.set).len();
+    let regions = regions(out.set);
+    let n = regions.len();
     let (mut sum, mut count) = (vec![0f64; n + 1], vec![0usize; n + 1]);
     for (&l, &v) in labels.iter().zip(&image.data) {
         sum[l as usize] += v as f64;
         count[l as usize] += 1;
     }
-    let quoted = format!("\"{}\"", name.replace('"', "\"\""));
-    regions(out.set)
+    let quoted = crate::io::export::csv_quoted(name);
+    regions
         .iter()
         .enumerate()
         .map(|(k, r)| {

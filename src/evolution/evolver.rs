@@ -222,19 +222,13 @@ impl Evolver {
             return Err(EvolveError::EmptyInit);
         }
         check_shapes(init, image.width, image.height)?;
-        let clipped;
-        let image = if params.modality == Modality::PhaseContrast {
-            // The halo reads as background: clip it to the background level, which the
-            // wrap's band shows, or else the image's median (background dominates).
-            let b = hints(image, init).1.unwrap_or_else(|| {
-                median(&mut image.data.iter().map(|&v| v as f64).collect::<Vec<_>>()).unwrap_or(0.5)
-            });
-            clipped = local::clip_halo(image, params.polarity, b);
-            &clipped
-        } else {
-            image
-        };
-        let pyramid = std::sync::Arc::new(Pyramid::new(image, params.coarsest_side, 4));
+        // Phase contrast: the halo reads as background, clipped to the level of the band a
+        // wrap shows.
+        let band = (params.modality == Modality::PhaseContrast)
+            .then(|| hints(image, init).1)
+            .flatten();
+        let image = local::for_modality(image, params.polarity, params.modality, band);
+        let pyramid = std::sync::Arc::new(Pyramid::new(&image, params.coarsest_side, 4));
         let level = pyramid.levels.len() - 1;
         let fine = &pyramid.levels[0].image;
         let (object_hint, background_hint) = hints(fine, init);
@@ -582,12 +576,7 @@ impl Evolver {
                 self.set_level(self.level - 1);
             }
         }
-        for &e in &events {
-            self.events.push(FrameEvent {
-                frame: self.frame,
-                event: e,
-            });
-        }
+        self.log_events(&events);
         Frame {
             index: self.frame,
             level: self.level,
@@ -636,12 +625,7 @@ impl Evolver {
         let gap = (self.params.mode == Mode::Preserve).then_some(PRESERVE_GAP * scale);
         remesh(&mut self.set, scale, d_max, gap, &mut events);
         self.set.set_max_edge(d_max);
-        for e in events {
-            self.events.push(FrameEvent {
-                frame: self.frame,
-                event: e,
-            });
-        }
+        self.log_events(&events);
     }
 
     /// A hand edit: moves vertex `v` towards `to` (clamped to the image) through the
@@ -741,10 +725,7 @@ impl Evolver {
                 break;
             }
             if !self.set.is_alive(v) && events.len() == before {
-                let Some(u) = self
-                    .vertex_near(was, 2.0 * bound)
-                    .filter(|&u| self.set.contour_of(u) == contour)
-                else {
+                let Some(u) = self.successor(was, contour) else {
                     break;
                 };
                 v = u;
@@ -766,12 +747,17 @@ impl Evolver {
         self.log_events(&events);
         let lead = match at {
             Some(_) if self.set.is_alive(v) => Some(v),
-            Some((p, c)) if events.len() == before => self
-                .vertex_near(p, 2.0 * self.set.max_edge())
-                .filter(|&u| self.set.contour_of(u) == c),
+            Some((p, c)) if events.len() == before => self.successor(p, c),
             _ => None,
         };
         (events, lead)
+    }
+
+    /// The vertex of `contour` nearest to where a dragged vertex was, within two edge
+    /// bounds: it leads the drag on when the dragged one was joined to a neighbour.
+    fn successor(&self, was: Point, contour: crate::contours::ContourId) -> Option<u32> {
+        self.vertex_near(was, 2.0 * self.set.max_edge())
+            .filter(|&u| self.set.contour_of(u) == contour)
     }
 
     /// The vertex nearest to `at` within `tol` pixels, if any.

@@ -150,6 +150,26 @@ pub fn clip_halo(image: &Field, polarity: Polarity, b: f64) -> Field {
 /// three times the mean half-width it still reaches background.
 pub const BACKGROUND_REACH: usize = 3;
 
+/// The image the forces see for `modality`: in phase contrast the halo clipped to the
+/// background level `background` (the band a wrap shows), or else the image's median
+/// (background dominates a phase-contrast field); any other image as it is.
+pub fn for_modality(
+    image: &Field,
+    polarity: Polarity,
+    modality: Modality,
+    background: Option<f64>,
+) -> std::borrow::Cow<'_, Field> {
+    if modality != Modality::PhaseContrast {
+        return std::borrow::Cow::Borrowed(image);
+    }
+    let b = background.unwrap_or_else(|| {
+        let mut v = image.data.clone();
+        let m = v.len() / 2;
+        *v.select_nth_unstable_by(m, f32::total_cmp).1 as f64
+    });
+    std::borrow::Cow::Owned(clip_halo(image, polarity, b))
+}
+
 /// Mean over the (2r+1)² box around each pixel, the box cut to the image (the mean of
 /// its part inside), by a summed-area table in f64.
 pub fn box_mean(f: &Field, r: usize) -> Field {

@@ -38,17 +38,8 @@ pub const CORE_PHASE: f64 = 0.75;
 
 /// One seed disk per object found in `image`.
 pub fn find_seeds(image: &Field, polarity: Polarity, modality: Modality) -> Vec<Shape> {
-    let clipped;
-    let image = if modality == Modality::PhaseContrast {
-        let mut v: Vec<f32> = image.data.clone();
-        let m = v.len() / 2;
-        let (_, &mut b, _) = v.select_nth_unstable_by(m, f32::total_cmp);
-        clipped = local::clip_halo(image, polarity, b as f64);
-        &clipped
-    } else {
-        image
-    };
-    let fine = Pyramid::new(image, usize::MAX, 1).levels.remove(0).image;
+    let image = local::for_modality(image, polarity, modality, None);
+    let fine = Pyramid::new(&image, usize::MAX, 1).levels.remove(0).image;
     let model = IntensityModel::learn(&fine, polarity, None, None);
     let r = local::object_scale(&fine, &model).round() as usize;
     let level = local::decision_field(&fine, r, &model, local::floor(&fine, &model, modality));

@@ -249,7 +249,7 @@ impl Outputs<'_> {
     pub fn csv(&self) -> String {
         let mut s =
             String::from("image,id,area,perimeter,circularity,centroid_x,centroid_y,holes\n");
-        let image = format!("\"{}\"", self.image.replace('"', "\"\""));
+        let image = csv_quoted(self.image);
         for r in regions(self.set) {
             s.push_str(&format!(
                 "{image},{},{},{},{},{},{},{}\n",
@@ -264,6 +264,11 @@ impl Outputs<'_> {
         }
         s
     }
+}
+
+/// `text` as one CSV field: in double quotes, inner quotes doubled.
+pub fn csv_quoted(text: &str) -> String {
+    format!("\"{}\"", text.replace('"', "\"\""))
 }
 
 /// Distinct colours for neighbouring labels (Okabe–Ito, readable by colour-blind users).

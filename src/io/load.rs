@@ -91,12 +91,10 @@ pub fn decode_image(bytes: &[u8], name: &str) -> Result<Field, LoadError> {
         reason: e.to_string(),
     };
     let reader = || image::ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format();
-    let format = reader().map_err(|e| decode_err(&e))?.format();
     // The header first: size limits before any pixel memory is allocated.
-    let (width, height) = reader()
-        .map_err(|e| decode_err(&e))?
-        .into_dimensions()
-        .map_err(|e| decode_err(&e))?;
+    let header = reader().map_err(|e| decode_err(&e))?;
+    let format = header.format();
+    let (width, height) = header.into_dimensions().map_err(|e| decode_err(&e))?;
     check_size(name, width, height)?;
     // No codec we read packs more than about a thousand pixels into a byte (deflate's
     // limit is 1032:1): a header claiming far more is a lie or a bomb, refused before
