@@ -480,6 +480,31 @@ impl ContourSet {
         }
     }
 
+    /// Deletes an outer ring together with its holes (or one hole): a hand edit.
+    pub fn remove_region(&mut self, id: ContourId) {
+        let holes: Vec<_> = self
+            .parents()
+            .into_iter()
+            .filter(|&(_, p)| p == Some(id))
+            .map(|(h, _)| h)
+            .collect();
+        for h in holes {
+            self.remove_ring(h);
+        }
+        self.remove_ring(id);
+    }
+
+    /// The live vertex nearest to `at` within `tol`, if any.
+    pub fn nearest_vertex(&self, at: Point, tol: f64) -> Option<VertexId> {
+        let mut near = Vec::new();
+        self.vertices_near(&Aabb { min: at, max: at }.expand(tol), &mut near);
+        near.into_iter()
+            .map(|v| (v, self.position(v).dist(at)))
+            .filter(|&(_, d)| d <= tol)
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(v, _)| v)
+    }
+
     /// Candidate edges (by start vertex, each once) that may meet box `b`, from the
     /// broad phase. An edge no longer than the reach L that meets `b` has an endpoint
     /// within L/2 of it, so the query covers `b` grown by L/2 only; each vertex found

@@ -1,0 +1,111 @@
+//! The engines behind an [`super::Evolver`]: one trait, three implementations.
+//!
+//! - [`super::explicit::Explicit`] moves polygon vertices through the topology core
+//!   (seed 003), generic over what differs between the adaptive engine and the
+//!   topology-preserving one (how a vertex moves, the extra push, the remesh gap; seed 004);
+//! - [`super::implicit::ImplicitEngine`] marches fronts on a pixel grid and keeps
+//!   topology with simple points and cut edges (seed 000).
+//!
+//! The evolver owns the schedule (pyramid levels, convergence) and the event log; an
+//! engine only does frames. [`Engines`] dispatches by enum, as the broad phase does, so an
+//! evolver stays `Clone` (the app's checkpoints) and calls are static.
+
+use super::explicit::{Adaptive, Explicit, Preserve};
+use super::implicit::ImplicitEngine;
+use crate::contours::ContourSet;
+use crate::geometry::Point;
+use crate::topology::TopologyEvent;
+
+/// What one frame did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// Frames done after this one (the implicit engine may count several per call).
+    pub index: usize,
+    /// Pyramid level the frame ran on (0: full resolution).
+    pub level: usize,
+    /// Topology events of the frame's moves, in order.
+    pub events: Vec<TopologyEvent>,
+    /// Area of the region after the frame, square pixels.
+    pub area: f64,
+    /// Vertices after the frame.
+    pub vertices: usize,
+    /// Contours (outer rings and holes) after the frame.
+    pub contours: usize,
+    /// Mean |displacement| in pixels.
+    pub mean_speed: f64,
+    /// Sum of |region score| over vertices: an energy-like measure that falls as contours
+    /// settle on edges.
+    pub energy: f64,
+    /// Share of vertices that moved noticeably.
+    pub active_share: f64,
+    /// The run reached its equilibrium with this frame.
+    pub converged: bool,
+    /// The motion regions (p, o, n, q) of the moves that caused this frame's events.
+    pub motions: Vec<[Point; 4]>,
+}
+
+/// An engine: advances contours one frame at a time.
+pub trait Engine {
+    /// One frame on pyramid level `level`; `index` is the number of frames done before.
+    /// The returned frame's `level` and `converged` are the schedule's to fill.
+    fn step(&mut self, index: usize, level: usize) -> Frame;
+    /// Runs to the end in one call if the engine needs no frame-by-frame schedule (the
+    /// implicit engine marches to its end and extracts contours once); `None` otherwise.
+    fn finish(&mut self, index: usize, frames_left: usize) -> Option<Frame>;
+    /// Moves to the finer pyramid level `level` (refining the rings); returns the events.
+    fn refine(&mut self, level: usize) -> Vec<TopologyEvent>;
+    /// The contours now.
+    fn contours(&self) -> &ContourSet;
+    /// The contours, for hand edits and the final clutter filter.
+    fn contours_mut(&mut self) -> &mut ContourSet;
+    /// `Some(done)` for an engine that knows when it is done; `None`: the schedule judges.
+    fn settled(&self) -> Option<bool>;
+    /// Places where the engine held fronts apart that the adaptive engine would have
+    /// joined (0 for the adaptive engine).
+    fn held_contacts(&self, level: usize) -> usize;
+}
+
+/// The three engines, dispatched by enum.
+#[derive(Clone)]
+pub enum Engines {
+    /// Topology adapts (seed 003).
+    Adaptive(Explicit<Adaptive>),
+    /// Topology kept explicitly with a gap (seed 004).
+    Preserve(Explicit<Preserve>),
+    /// Topology kept implicitly (seed 000).
+    Implicit(Box<ImplicitEngine>),
+}
+
+macro_rules! each {
+    ($self:expr, $e:ident => $body:expr) => {
+        match $self {
+            Engines::Adaptive($e) => $body,
+            Engines::Preserve($e) => $body,
+            Engines::Implicit($e) => $body,
+        }
+    };
+}
+
+impl Engine for Engines {
+    fn step(&mut self, index: usize, level: usize) -> Frame {
+        each!(self, e => e.step(index, level))
+    }
+    fn finish(&mut self, index: usize, frames_left: usize) -> Option<Frame> {
+        each!(self, e => e.finish(index, frames_left))
+    }
+    fn refine(&mut self, level: usize) -> Vec<TopologyEvent> {
+        each!(self, e => e.refine(level))
+    }
+    fn contours(&self) -> &ContourSet {
+        each!(self, e => e.contours())
+    }
+    fn contours_mut(&mut self) -> &mut ContourSet {
+        each!(self, e => e.contours_mut())
+    }
+    fn settled(&self) -> Option<bool> {
+        each!(self, e => e.settled())
+    }
+    fn held_contacts(&self, level: usize) -> usize {
+        each!(self, e => e.held_contacts(level))
+    }
+}

@@ -1,0 +1,134 @@
+//! Hand edits through the topology core: a dragged vertex pulls a tongue of its contour,
+//! every step an ordinary motion region, so a drag that makes two contours touch merges
+//! them, one that pinches splits, one that closes a gap makes a hole — exactly.
+
+use super::{spacing, Explicit, Motion};
+use crate::contours::{ContourId, ContourSet};
+use crate::geometry::Point;
+use crate::topology::{MoveError, TopologyEvent};
+
+/// Vertices on each side that follow a hand-dragged vertex (with weights falling to 0).
+const HAND_FOLLOW: usize = 3;
+
+impl<M: Motion> Explicit<M> {
+    /// Drags vertex `v` towards `to` (clamped to the image) at pyramid level `level`, in
+    /// steps of a quarter of the edge bound with the moving vertex's edges split ahead of
+    /// it and its three neighbours on each side following with weights ¾, ½, ¼ (a tongue,
+    /// not a spike); a degenerate step is retried at half and a quarter length. Returns
+    /// the events and the vertex that leads at the end: when the lead vanishes without a
+    /// topology event (a remesh joined it to a neighbour), the vertex of its contour
+    /// nearest to where it was; after a merge or split the drag has done its work
+    /// (`None`).
+    pub fn hand_drag(
+        &mut self,
+        v: u32,
+        to: Point,
+        level: usize,
+    ) -> (Vec<TopologyEvent>, Option<u32>) {
+        let mut events = Vec::new();
+        if !self.set.is_alive(v) {
+            return (events, None);
+        }
+        let mut v = v;
+        let to = self.bounds.clamp(to);
+        let (scale, d_min, d_max) = spacing(level);
+        let step = 0.25 * self.set.max_edge();
+        let from = self.set.position(v);
+        let n = (from.dist(to) / step).ceil().max(1.0) as usize;
+        for k in 1..=n {
+            if !self.set.is_alive(v) {
+                break;
+            }
+            let (contour, was) = (self.set.contour_of(v), self.set.position(v));
+            let before = events.len();
+            let target = from.lerp(to, k as f64 / n as f64);
+            if !self.drag_step(v, target, step, scale, &mut events) {
+                break;
+            }
+            if !self.set.is_alive(v) && events.len() == before {
+                let Some(u) = successor(&self.set, was, contour) else {
+                    break;
+                };
+                v = u;
+            }
+        }
+        let at = self
+            .set
+            .is_alive(v)
+            .then(|| (self.set.position(v), self.set.contour_of(v)));
+        let before = events.len();
+        super::remesh(&mut self.set, d_min, d_max, M::gap(scale), &mut events);
+        let lead = match at {
+            Some(_) if self.set.is_alive(v) => Some(v),
+            Some((p, c)) if events.len() == before => successor(&self.set, p, c),
+            _ => None,
+        };
+        (events, lead)
+    }
+
+    /// One step of a drag: `v` towards `target`, its neighbours following. Returns
+    /// whether the lead moved.
+    fn drag_step(
+        &mut self,
+        v: u32,
+        target: Point,
+        step: f64,
+        scale: f64,
+        events: &mut Vec<TopologyEvent>,
+    ) -> bool {
+        let bound = self.set.max_edge();
+        // Split the moving vertex's edges that this step could stretch past the bound.
+        for a in [self.set.prev(v), v] {
+            let b = self.set.next(a);
+            if self.set.position(a).dist(self.set.position(b)) > bound - step {
+                let _ = self.set.insert_vertex(a, 0.5);
+            }
+        }
+        let d = target - self.set.position(v);
+        // The vertex leads; its neighbours follow with falling weights, so the drag pulls
+        // a tongue, not a one-vertex spike whose two edges are nearly parallel (such a
+        // spike meets other contours only in degenerate crossings).
+        let (mut p, mut q) = (v, v);
+        let mut chain = vec![(v, 1.0)];
+        for i in 1..=HAND_FOLLOW {
+            p = self.set.prev(p);
+            q = self.set.next(q);
+            if p == q || p == v {
+                break;
+            }
+            let w = 1.0 - i as f64 / (HAND_FOLLOW + 1) as f64;
+            chain.extend([(p, w), (q, w)]);
+        }
+        let mut lead_moved = true;
+        for (u, w) in chain {
+            if !self.set.is_alive(u) {
+                continue;
+            }
+            let at = self.set.position(u);
+            let mut done = false;
+            for f in [1.0, 0.5, 0.25] {
+                let goal = self.bounds.clamp(at + d * (w * f));
+                match M::attempt(&mut self.set, u, goal, scale) {
+                    Ok(ev) => {
+                        events.extend(ev);
+                        done = true;
+                        break;
+                    }
+                    Err(MoveError::Degenerate(_)) => continue,
+                    Err(_) => break,
+                }
+            }
+            if u == v {
+                lead_moved = done;
+            }
+        }
+        lead_moved
+    }
+}
+
+/// The vertex of `contour` nearest to where a dragged vertex was, within two edge bounds:
+/// it leads the drag on when the dragged one was joined to a neighbour.
+fn successor(set: &ContourSet, was: Point, contour: ContourId) -> Option<u32> {
+    set.nearest_vertex(was, 2.0 * set.max_edge())
+        .filter(|&u| set.contour_of(u) == contour)
+}

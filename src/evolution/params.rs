@@ -1,0 +1,175 @@
+//! What an evolution is asked to do: the engine ([`Mode`]), its [`Params`] and why a run
+//! could not start ([`EvolveError`]), with the checks made before anything moves.
+
+use super::forces::{ForceWeights, Polarity};
+use super::init::Shape;
+use super::local::Modality;
+use crate::contours::BroadPhaseKind;
+
+/// How topology may change.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum Mode {
+    /// Contours split, merge, make and lose holes (seed 003).
+    Adaptive,
+    /// Topology stays as initialised: moves that would cross are shortened to keep a gap
+    /// and nearby parts repel (seed 004).
+    Preserve,
+    /// Topology stays as initialised, implicitly: fast marching on a cut-edge grid
+    /// (seed 000; see [`super::implicit`]).
+    Implicit,
+}
+
+impl Mode {
+    /// The name used on the command line and in exports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Adaptive => "adaptive",
+            Mode::Preserve => "preserve",
+            Mode::Implicit => "implicit",
+        }
+    }
+}
+
+/// Parameters of an evolution. `Params::default()` is the one set that serves every
+/// public case.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Params {
+    /// Whether objects are darker or brighter than the background.
+    pub polarity: Polarity,
+    /// The engine: how topology may change.
+    #[serde(default = "default_mode")]
+    pub mode: Mode,
+    /// Weights of the forces (region, balloon, edge, stretch, bend).
+    pub weights: ForceWeights,
+    /// Largest step per frame, as a fraction of the level's grid spacing.
+    pub step: f64,
+    /// Frames allowed in all.
+    pub max_frames: usize,
+    /// Outer regions and holes smaller than this many square pixels are dropped at the end.
+    pub min_area: f64,
+    /// Share of active vertices below which a level counts as converged.
+    pub converged_share: f64,
+    /// Coarsest pyramid level's short side, pixels.
+    pub coarsest_side: usize,
+    /// Broad phase of the crossing search (same results, different speed and memory).
+    #[serde(default)]
+    pub broad_phase: BroadPhaseKind,
+    /// The kind of image (phase contrast clips the halo; see [`super::local`]).
+    #[serde(default)]
+    pub modality: Modality,
+    /// Compare with a local decision level (see [`super::local`]) instead of the global one.
+    #[serde(default = "default_local")]
+    pub local: bool,
+    /// Radius of the local statistics in pixels; `None`: from the seeds or the image.
+    #[serde(default)]
+    pub local_radius: Option<f64>,
+}
+
+fn default_local() -> bool {
+    true
+}
+
+fn default_mode() -> Mode {
+    Mode::Adaptive
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Params {
+            polarity: Polarity::Dark,
+            mode: Mode::Adaptive,
+            weights: ForceWeights::default(),
+            step: 0.75,
+            max_frames: 3000,
+            min_area: 20.0,
+            converged_share: 0.03,
+            coarsest_side: 64,
+            broad_phase: BroadPhaseKind::Bins,
+            modality: Modality::Generic,
+            local: true,
+            local_radius: None,
+        }
+    }
+}
+
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum EvolveError {
+    /// No shape, or none left inside the image.
+    #[error("the initialisation is empty: give at least one seed, rectangle or polygon")]
+    EmptyInit,
+    /// A shape with a non-finite coordinate or a disk larger than the image.
+    #[error("a shape of the initialisation is not usable: {0}")]
+    BadShape(String),
+    /// A parameter out of its range.
+    #[error("parameter {name} must be {what}, got {value}")]
+    BadParameter {
+        /// The parameter's name as the command line spells it.
+        name: &'static str,
+        /// The range it must lie in.
+        what: &'static str,
+        /// The value given.
+        value: f64,
+    },
+}
+
+pub(crate) fn check_params(p: &Params) -> Result<(), EvolveError> {
+    let w = &p.weights;
+    for (name, value) in [
+        ("region", w.region),
+        ("balloon", w.balloon),
+        ("edge", w.edge),
+        ("stretch", w.stretch),
+        ("bend", w.bend),
+    ] {
+        if !(value.is_finite() && value >= 0.0) {
+            return Err(EvolveError::BadParameter {
+                name,
+                what: "a finite number ≥ 0",
+                value,
+            });
+        }
+    }
+    if !(p.step.is_finite() && p.step > 0.0 && p.step <= 2.0) {
+        return Err(EvolveError::BadParameter {
+            name: "step",
+            what: "in (0, 2]",
+            value: p.step,
+        });
+    }
+    if !(p.min_area.is_finite() && p.min_area >= 0.0) {
+        return Err(EvolveError::BadParameter {
+            name: "min_area",
+            what: "a finite number ≥ 0",
+            value: p.min_area,
+        });
+    }
+    Ok(())
+}
+
+/// Shapes with finite coordinates and disks no larger than the image's diagonal (a ring
+/// has a vertex every pixel or so: a huge radius would be a huge ring, clipped after).
+pub(crate) fn check_shapes(init: &[Shape], width: usize, height: usize) -> Result<(), EvolveError> {
+    let diagonal = (width as f64).hypot(height as f64);
+    for s in init {
+        let finite = match s {
+            Shape::Disk { center, radius } => {
+                if !(*radius > 0.0 && *radius <= diagonal) {
+                    return Err(EvolveError::BadShape(format!(
+                        "disk radius {radius} is not in (0, {diagonal:.0}], the image's diagonal"
+                    )));
+                }
+                center.x.is_finite() && center.y.is_finite()
+            }
+            Shape::Rect { min, max } => [min.x, min.y, max.x, max.y].iter().all(|v| v.is_finite()),
+            Shape::Polygon(pts) => pts.iter().all(|p| p.x.is_finite() && p.y.is_finite()),
+        };
+        if !finite {
+            return Err(EvolveError::BadShape(format!(
+                "{s:?} has a coordinate that is not finite"
+            )));
+        }
+    }
+    Ok(())
+}
+
