@@ -231,6 +231,39 @@ pub fn segment_intersection(a0: Point, a1: Point, b0: Point, b1: Point) -> Segme
     SegmentIntersection::Touch
 }
 
+/// The endpoint edges `s` and `e` (each two endpoints with their ids) share, if any:
+/// the shared point, `s`'s other end and `e`'s other end. Ids are compared, not points:
+/// a ring's neighbouring edges share a vertex, distinct vertices may coincide.
+#[inline(always)]
+pub fn shared_endpoint<I: PartialEq + Copy>(
+    s: [(I, Point); 2],
+    e: [(I, Point); 2],
+) -> Option<(Point, Point, Point)> {
+    let [(s0id, s0), (s1id, s1)] = s;
+    let [(aid, pa), (bid, pb)] = e;
+    if aid == s0id {
+        Some((s0, s1, pb))
+    } else if aid == s1id {
+        Some((s1, s0, pb))
+    } else if bid == s0id {
+        Some((s0, s1, pa))
+    } else if bid == s1id {
+        Some((s1, s0, pa))
+    } else {
+        None
+    }
+}
+
+/// Whether edges `s` and `e` meet where two edges of simple rings may not: edges sharing
+/// an endpoint anywhere beyond it (they fold onto each other), others anywhere.
+#[inline(always)]
+pub fn edges_clash<I: PartialEq + Copy>(s: [(I, Point); 2], e: [(I, Point); 2]) -> bool {
+    match shared_endpoint(s, e) {
+        Some((at, s_other, e_other)) => folds_back(at, s_other, e_other),
+        None => segment_intersection(s[0].1, s[1].1, e[0].1, e[1].1) != SegmentIntersection::None,
+    }
+}
+
 /// Whether segments s0–s1 and s0–t (sharing the endpoint s0) overlap beyond s0.
 #[inline]
 pub fn folds_back(s0: Point, s1: Point, t: Point) -> bool {

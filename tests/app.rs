@@ -149,17 +149,13 @@ fn errors_show_in_the_app_instead_of_panicking() {
     h.state_mut()
         .send(Command::OpenImage("/nonexistent/image.png".into()));
     h.step();
-    assert!(h.state().error.as_deref().unwrap().contains("cannot read"));
+    let error = |h: &Harness<TopoApp>| h.state().error.as_ref().unwrap().to_string();
+    assert!(error(&h).contains("cannot read"));
     h.state_mut().send(Command::DeleteShape(0));
     h.step();
     h.get_by_label("Step").click();
     h.step();
-    assert!(h
-        .state()
-        .error
-        .as_deref()
-        .unwrap()
-        .contains("initialisation"));
+    assert!(error(&h).contains("initialisation"));
 }
 
 #[test]

@@ -18,8 +18,8 @@ pub mod staggered_hash;
 pub mod vertex_bins;
 
 use crate::geometry::{
-    folds_back, orient, segment_intersection, signed_area2, winding_number, Aabb, Point,
-    SegmentIntersection,
+    edges_clash, folds_back, orient, segment_intersection, shared_endpoint, signed_area2,
+    winding_number, Aabb, Point, SegmentIntersection,
 };
 pub use broad_phase::{Broad, BroadPhase, BroadPhaseKind, Countable};
 pub use staggered_hash::StaggeredHash;
@@ -205,14 +205,9 @@ impl ContourSet {
         self.prev[first as usize] = last;
         if self.new_ring_intersects(first) {
             // Undo: the slots go back to the free list, the id is not used.
-            let mut w = first;
-            loop {
-                let nw = self.next[w as usize];
+            let ring: Vec<VertexId> = self.walk(first).collect();
+            for w in ring {
                 self.release(w);
-                w = nw;
-                if w == first {
-                    break;
-                }
             }
             return Err(RingError::Intersects);
         }
@@ -230,8 +225,7 @@ impl ContourSet {
     /// near it, so the check is O(n) rather than O(n²).
     fn new_ring_intersects(&self, first: u32) -> bool {
         let mut cand = Vec::new();
-        let mut a = first;
-        loop {
+        for a in self.walk(first) {
             let b = self.next[a as usize];
             let (a0, a1) = (self.pos[a as usize], self.pos[b as usize]);
             if a0 == a1 {
@@ -245,20 +239,9 @@ impl ContourSet {
                 let cn = self.next[c as usize];
                 let (c0, c1) = (self.pos[c as usize], self.pos[cn as usize]);
                 // Neighbouring edges share one vertex and must not fold onto each other.
-                let bad = if c == b {
-                    folds_back(a1, a0, c1)
-                } else if cn == a {
-                    folds_back(a0, a1, c0)
-                } else {
-                    segment_intersection(a0, a1, c0, c1) != SegmentIntersection::None
-                };
-                if bad {
+                if edges_clash([(a, a0), (b, a1)], [(c, c0), (cn, c1)]) {
                     return true;
                 }
-            }
-            a = b;
-            if a == first {
-                break;
             }
         }
         // A ring with no crossing may still enclose or sit inside another one: that is
@@ -357,28 +340,27 @@ impl ContourSet {
     }
     /// The vertices of a ring in order, starting anywhere.
     pub fn ring_vertices(&self, id: ContourId) -> Vec<VertexId> {
-        let r = self.ring(id.0);
-        let mut out = Vec::with_capacity(r.len as usize);
-        let mut v = r.anchor;
-        loop {
-            out.push(v);
-            v = self.next[v as usize];
-            if v == r.anchor || out.len() > self.pos.len() {
-                break;
-            }
+        self.walk(self.ring(id.0).anchor).collect()
+    }
+    /// The vertices of `from`'s ring in order, starting at `from`, once round.
+    ///
+    /// # Panics
+    /// If `from` is not a vertex of the set.
+    pub fn walk(&self, from: VertexId) -> RingWalk<'_> {
+        assert!((from as usize) < self.next.len(), "no vertex {from}");
+        RingWalk {
+            next: &self.next,
+            from,
+            at: Some(from),
+            left: self.next.len(),
         }
-        out
     }
     /// Every live vertex, ring by ring in ring order (neighbours in space come one after
     /// the other: what a pass over all vertices wants for its memory accesses).
     pub fn vertices_in_ring_order(&self, out: &mut Vec<VertexId>) {
         out.clear();
         for r in self.rings.iter().flatten() {
-            let mut v = r.anchor;
-            for _ in 0..r.len {
-                out.push(v);
-                v = self.next[v as usize];
-            }
+            out.extend(self.walk(r.anchor));
         }
     }
     /// The positions of a ring in order.
@@ -413,13 +395,11 @@ impl ContourSet {
             return area2 > 0.0;
         }
         let mut best = anchor;
-        let mut w = self.next[anchor as usize];
-        while w != anchor {
+        for w in self.walk(anchor).skip(1) {
             let (pw, pb) = (self.pos[w as usize], self.pos[best as usize]);
             if (pw.x, pw.y) < (pb.x, pb.y) {
                 best = w;
             }
-            w = self.next[w as usize];
         }
         let b = best as usize;
         orient(
@@ -469,14 +449,9 @@ impl ContourSet {
             return;
         };
         self.live_rings -= 1;
-        let mut w = r.anchor;
-        loop {
-            let nw = self.next[w as usize];
+        let ring: Vec<VertexId> = self.walk(r.anchor).collect();
+        for w in ring {
             self.release(w);
-            w = nw;
-            if w == r.anchor {
-                break;
-            }
         }
     }
 
@@ -638,6 +613,28 @@ impl ContourSet {
     }
 }
 
+/// The vertices of one ring in order, once round: [`ContourSet::walk`]. Bounded by the
+/// arena's size, so even broken links (which `sanity_check` reports) cannot loop forever.
+#[derive(Clone, Debug)]
+pub struct RingWalk<'a> {
+    next: &'a [VertexId],
+    from: VertexId,
+    at: Option<VertexId>,
+    left: usize,
+}
+
+impl Iterator for RingWalk<'_> {
+    type Item = VertexId;
+    #[inline]
+    fn next(&mut self) -> Option<VertexId> {
+        let v = self.at?;
+        self.left = self.left.checked_sub(1)?;
+        let n = self.next[v as usize];
+        self.at = (n != self.from).then_some(n);
+        Some(v)
+    }
+}
+
 /// What is wrong with two distinct edges a0→a1 (start `va`, end `na`) and b0→b1, if
 /// anything: edges sharing a vertex may meet only there; others may not meet at all.
 #[allow(clippy::too_many_arguments)]
@@ -651,17 +648,12 @@ pub(crate) fn edge_pair_fault(
     b0: Point,
     b1: Point,
 ) -> Option<&'static str> {
-    let shared = na == vb || nb == va;
-    if shared {
-        if na == vb && nb == va {
-            return Some("two-vertex ring");
-        }
+    if na == vb && nb == va {
+        return Some("two-vertex ring");
+    }
+    if let Some((at, x, y)) = shared_endpoint([(va, a0), (na, a1)], [(vb, b0), (nb, b1)]) {
         // They meet at the shared vertex; anything more is an overlap.
-        let (s, x, y) = if na == vb { (a1, a0, b1) } else { (a0, a1, b0) };
-        if orient(s, x, y) == 0.0 && (x - s).dot(y - s) > 0.0 {
-            return Some("adjacent edges overlap");
-        }
-        None
+        folds_back(at, x, y).then_some("adjacent edges overlap")
     } else {
         match segment_intersection(a0, a1, b0, b1) {
             SegmentIntersection::None => None,

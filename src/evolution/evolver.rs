@@ -173,7 +173,9 @@ impl Evolver {
             self.schedule.converged = done;
         } else {
             let set = self.engine.contours();
-            let judged = self.schedule.judge(set, frame.active_share, self.params.converged_share);
+            let judged = self
+                .schedule
+                .judge(set, frame.active_share, self.params.converged_share);
             if let Some(level) = judged {
                 let events = self.engine.refine(level);
                 self.log_events(&events);
@@ -252,7 +254,11 @@ impl Evolver {
 
 /// Per pyramid level, the local decision level of the region term (empty: the global
 /// model decides).
-fn decision_levels(pyramid: &Pyramid, model: &IntensityModel, params: &Params) -> Vec<local::Decision> {
+fn decision_levels(
+    pyramid: &Pyramid,
+    model: &IntensityModel,
+    params: &Params,
+) -> Vec<local::Decision> {
     if !params.local {
         return Vec::new();
     }

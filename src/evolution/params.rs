@@ -172,4 +172,3 @@ pub(crate) fn check_shapes(init: &[Shape], width: usize, height: usize) -> Resul
     }
     Ok(())
 }
-

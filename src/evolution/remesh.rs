@@ -24,14 +24,7 @@ pub fn remesh(
         let n = set.next(v);
         let len = set.position(v).dist(set.position(n));
         if len > d_max {
-            let parts = (len / d_max).ceil() as usize;
-            let mut a = v;
-            for i in 1..parts {
-                match set.insert_vertex(a, 1.0 / (parts - i + 1) as f64) {
-                    Ok(x) => a = x,
-                    Err(_) => break,
-                }
-            }
+            set.split_edge(v, (len / d_max).ceil() as usize);
         } else if len < d_min && set.ring_len(set.contour_of(v)) > 3 {
             // Remove the end of the short edge if the edge that replaces it stays short.
             let nn = set.next(n);

@@ -21,8 +21,8 @@ use super::motion_region::MotionRegion;
 use super::Degeneracy;
 use crate::contours::ContourSet;
 use crate::geometry::{
-    fmax, fmin, folds_back, point_segment_distance, segment_intersection, Aabb, Point,
-    SegmentIntersection,
+    fmax, fmin, folds_back, point_segment_distance, segment_intersection, shared_endpoint, Aabb,
+    Point, SegmentIntersection,
 };
 
 /// One proper crossing of new edge `k` (at parameter `t`) with the edge starting at vertex
@@ -74,17 +74,7 @@ pub(crate) fn find_crossings(
         }
         for (k, &(s0id, s0, s1id, s1)) in new_edges.iter().enumerate() {
             // Edges sharing a vertex meet there; they must not also overlap.
-            let shared = if a == s0id {
-                Some((s0, s1, pb))
-            } else if a == s1id {
-                Some((s1, s0, pb))
-            } else if b == s0id {
-                Some((s0, s1, pa))
-            } else if b == s1id {
-                Some((s1, s0, pa))
-            } else {
-                None
-            };
+            let shared = shared_endpoint([(s0id, s0), (s1id, s1)], [(a, pa), (b, pb)]);
             if let Some((at, s_other, e_other)) = shared {
                 if folds_back(at, s_other, e_other) {
                     return Err(Degeneracy::Overlap);

@@ -29,7 +29,7 @@ pub mod preserve;
 mod quiet;
 
 use crate::contours::{ContourSet, Ring, VertexId, NIL};
-use crate::geometry::{folds_back, segment_intersection, Aabb, Point, SegmentIntersection};
+use crate::geometry::{edges_clash, folds_back, Aabb, Point};
 pub(crate) use directive1::Crossing;
 use directive1::{find_crossings, guard_crossings, NewEdge};
 pub use events::TopologyEvent;
@@ -137,18 +137,7 @@ impl ContourSet {
             let cn = self.next[c as usize];
             let (c0, c1) = (self.pos[c as usize], self.pos[cn as usize]);
             for (s0id, s0, s1id, s1) in [(a, pa, NIL, m), (NIL, m, b, pb)] {
-                let shared = if c == s0id || cn == s0id {
-                    Some((s0, s1, if c == s0id { c1 } else { c0 }))
-                } else if c == s1id || cn == s1id {
-                    Some((s1, s0, if c == s1id { c1 } else { c0 }))
-                } else {
-                    None
-                };
-                let bad = match shared {
-                    Some((at, s_other, e_other)) => folds_back(at, s_other, e_other),
-                    None => segment_intersection(s0, s1, c0, c1) != SegmentIntersection::None,
-                };
-                if bad {
+                if edges_clash([(s0id, s0), (s1id, s1)], [(c, c0), (cn, c1)]) {
                     fault = Some(Degeneracy::Near);
                 }
             }
@@ -427,16 +416,7 @@ impl ContourSet {
             if len <= self.max_edge {
                 continue;
             }
-            let parts = (len / self.max_edge).ceil() as usize;
-            let mut cursor = a;
-            for i in 1..parts {
-                // Each insertion splits the remaining stretch cursor→b.
-                let t = 1.0 / (parts - i + 1) as f64;
-                match self.insert_vertex(cursor, t) {
-                    Ok(x) => cursor = x,
-                    Err(_) => break,
-                }
-            }
+            self.split_edge(a, (len / self.max_edge).ceil() as usize);
             // Should a split be refused (rounding next to other geometry), the broad phase
             // widens its reach so that correctness never rests on the bound.
             let mut w = a;
@@ -446,6 +426,20 @@ impl ContourSet {
                     .reach
                     .max(self.pos[w as usize].dist(self.pos[nw as usize]));
                 w = nw;
+            }
+        }
+    }
+
+    /// Splits the edge from `a` into `parts` equal parts (fewer if an insertion is
+    /// refused, which leaves the geometry as it was).
+    pub fn split_edge(&mut self, a: VertexId, parts: usize) {
+        let mut cursor = a;
+        for i in 1..parts {
+            // Each insertion splits the remaining stretch cursor→b.
+            let t = 1.0 / (parts - i + 1) as f64;
+            match self.insert_vertex(cursor, t) {
+                Ok(x) => cursor = x,
+                Err(_) => break,
             }
         }
     }

@@ -101,7 +101,13 @@ impl Motion for Preserve {
     fn push(set: &ContourSet, v: u32, scale: f64, near: &mut Vec<u32>) -> Option<Point> {
         Some(repulsion(set, v, 1.5 * scale, near))
     }
-    fn advance(set: &mut ContourSet, v: u32, to: Point, scale: f64, _: &mut Vec<TopologyEvent>) -> f64 {
+    fn advance(
+        set: &mut ContourSet,
+        v: u32,
+        to: Point,
+        scale: f64,
+        _: &mut Vec<TopologyEvent>,
+    ) -> f64 {
         set.move_vertex_preserving(v, to, PRESERVE_GAP * scale)
             .unwrap_or(0.0)
     }

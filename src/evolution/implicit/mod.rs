@@ -299,7 +299,8 @@ impl ImplicitEngine {
     }
 
     fn build(&self) -> ContourSet {
-        let mut set = ContourSet::with_broad_phase(self.domain, IMPLICIT_MAX_EDGE, self.broad_phase);
+        let mut set =
+            ContourSet::with_broad_phase(self.domain, IMPLICIT_MAX_EDGE, self.broad_phase);
         for ring in &self.rings {
             // Rings from marching squares are disjoint by construction; a refusal here
             // would be a bug, never silently different output in release.

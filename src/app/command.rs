@@ -1,0 +1,414 @@
+//! What a widget can ask for ([`Command`]) and the one place commands change the app
+//! ([`TopoApp::apply`] → `apply_now`), each group of commands in its own handler.
+
+use super::{auto_contrast, Settings, TopoApp};
+use crate::contours::BroadPhaseKind;
+use crate::evolution::{find_seeds, Modality, Mode, Polarity, Shape};
+use crate::geometry::Point;
+use crate::io::load_image;
+use std::path::{Path, PathBuf};
+
+/// What a click on the canvas does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Tool {
+    /// Click for a seed disk, drag to set its radius.
+    Seed,
+    /// Drag a rectangle.
+    Rect,
+    /// Click polygon corners; double-click (or click the first corner) to close.
+    Polygon,
+    /// Select, drag or delete seeds and shapes.
+    Select,
+    /// Edit the contours by hand: drag a vertex (through the topology core), click to
+    /// select a contour, Delete removes it.
+    Edit,
+}
+
+/// What an export writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ExportKind {
+    Svg,
+    GeoJson,
+    Mask,
+    Csv,
+    /// 16-bit label image (TIFF).
+    Labels,
+    /// ImageJ ROI set (zip) for Fiji's ROI Manager.
+    Roi,
+}
+
+impl ExportKind {
+    pub fn extension(self) -> &'static str {
+        match self {
+            ExportKind::Svg => "svg",
+            ExportKind::GeoJson => "geojson",
+            ExportKind::Mask => "png",
+            ExportKind::Csv => "csv",
+            ExportKind::Labels => "tif",
+            ExportKind::Roi => "zip",
+        }
+    }
+}
+
+/// Everything a widget can ask for; applied in one place, [`TopoApp::apply`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum Command {
+    OpenImage(PathBuf),
+    /// Open a file dialog and then the chosen image.
+    OpenDialog,
+    AddShape(Shape),
+    MoveShape {
+        index: usize,
+        by: Point,
+    },
+    DeleteShape(usize),
+    Select(Option<usize>),
+    SetTool(Tool),
+    WrapBorder(f64),
+    /// Place one seed per object found in the image (automatic seeds), as editable shapes.
+    FindSeeds,
+    /// The kind of image (phase contrast treats the halo as background).
+    SetModality(Modality),
+    Play,
+    Pause,
+    Step(usize),
+    /// Step until a frame with a topology event (or convergence).
+    StepToEvent,
+    Reset,
+    /// Show recorded frame `n` (0: the initialisation).
+    SeekFrame(usize),
+    Export(ExportKind, PathBuf),
+    ExportDialog(ExportKind),
+    SetPolarity(Polarity),
+    SetMode(Mode),
+    SetBroadPhase(BroadPhaseKind),
+    /// Run a second engine beside the first, on the same image and shapes (or stop).
+    SetCompare(Option<Mode>),
+    ResetParameters,
+    /// Save the image reference, shapes, parameters and the frame on screen as a session.
+    SaveSession(PathBuf),
+    /// Open a session: its image, shapes and parameters, run to its frame.
+    OpenSession(PathBuf),
+    /// Choose a file in a dialog, then save (true) or open (false) a session there.
+    SessionDialog(bool),
+    /// Hand edit: move contour vertex `vertex` of the frame on screen to `to`, through the
+    /// topology core (merges, splits and holes happen exactly, logged as events).
+    HandMove {
+        vertex: u32,
+        to: Point,
+    },
+    /// Hand edit: delete the contour `id` of the frame on screen (with its holes).
+    DeleteContour(u32),
+    /// Select a contour of the frame on screen to see its measurements (or none).
+    SelectContour(Option<u32>),
+    /// Undo the last change of the document (Ctrl+Z).
+    Undo,
+    /// Redo what Undo undid (Ctrl+Shift+Z, Ctrl+Y).
+    Redo,
+}
+
+impl TopoApp {
+    /// The one place the document changes: records an undo step when the command starts
+    /// one, then hands the command to its group's handler.
+    pub(super) fn apply_now(&mut self, c: Command) {
+        if self.history.starts_step(&c) {
+            let before = self.snapshot();
+            self.history.push(before);
+        }
+        match c {
+            Command::HandMove { .. } | Command::DeleteContour(..) | Command::SelectContour(..) => {
+                self.hand_edit(c)
+            }
+            Command::Undo | Command::Redo => self.undo_redo(c),
+            Command::AddShape(..)
+            | Command::MoveShape { .. }
+            | Command::DeleteShape(..)
+            | Command::Select(..)
+            | Command::WrapBorder(..)
+            | Command::FindSeeds => self.edit_shapes(c),
+            Command::Play
+            | Command::Pause
+            | Command::Step(..)
+            | Command::StepToEvent
+            | Command::Reset
+            | Command::SeekFrame(..) => self.playback(c),
+            Command::SetTool(..)
+            | Command::SetModality(..)
+            | Command::SetPolarity(..)
+            | Command::SetMode(..)
+            | Command::SetCompare(..)
+            | Command::SetBroadPhase(..)
+            | Command::ResetParameters => self.set_parameter(c),
+            Command::OpenImage(..)
+            | Command::OpenDialog
+            | Command::Export(..)
+            | Command::ExportDialog(..)
+            | Command::SessionDialog(..)
+            | Command::SaveSession(..)
+            | Command::OpenSession(..) => self.files(c),
+        }
+    }
+
+    /// Hand edits of the frame on screen, through the engine.
+    fn hand_edit(&mut self, c: Command) {
+        match c {
+            Command::HandMove { vertex, to } => {
+                if self.ensure_run() {
+                    let at = self.shown;
+                    let run = self.run.as_mut().expect("ensured");
+                    let mut lead = None;
+                    let events = run.edit_at(at, |ev| {
+                        let (events, l) = ev.hand_drag(vertex, to);
+                        lead = l;
+                        events
+                    });
+                    // The drag goes on with the vertex that leads now.
+                    self.canvas.set_drag_lead(lead);
+                    self.log.retain(|(f, _)| *f <= at);
+                    self.log.extend(events.into_iter().map(|e| (at, e)));
+                }
+            }
+            Command::DeleteContour(id) => {
+                if self.ensure_run() {
+                    let at = self.shown;
+                    let run = self.run.as_mut().expect("ensured");
+                    run.edit_at(at, |ev| {
+                        ev.delete_contour(crate::contours::ContourId(id));
+                        Vec::new()
+                    });
+                    self.selected_contour = None;
+                }
+            }
+            Command::SelectContour(id) => self.selected_contour = id,
+            _ => unreachable!("not a hand edit command: {c:?}"),
+        }
+    }
+
+    /// Undo and redo.
+    fn undo_redo(&mut self, c: Command) {
+        match c {
+            Command::Undo => {
+                let now = self.snapshot();
+                match self.history.undo(now) {
+                    Some(s) => self.restore(s),
+                    None => self.notice = Some("nothing to undo".into()),
+                }
+            }
+            Command::Redo => {
+                let now = self.snapshot();
+                match self.history.redo(now) {
+                    Some(s) => self.restore(s),
+                    None => self.notice = Some("nothing to redo".into()),
+                }
+            }
+            _ => unreachable!("not a undo redo command: {c:?}"),
+        }
+    }
+
+    /// The user's shapes (the initialisation).
+    fn edit_shapes(&mut self, c: Command) {
+        match c {
+            Command::AddShape(s) => {
+                self.shapes.push(s);
+                self.selected = Some(self.shapes.len() - 1);
+                self.reset_run();
+            }
+            Command::MoveShape { index, by } => {
+                if let Some(s) = self.shapes.get_mut(index) {
+                    *s = match s.clone() {
+                        Shape::Disk { center, radius } => Shape::Disk {
+                            center: center + by,
+                            radius,
+                        },
+                        Shape::Rect { min, max } => Shape::Rect {
+                            min: min + by,
+                            max: max + by,
+                        },
+                        Shape::Polygon(p) => {
+                            Shape::Polygon(p.into_iter().map(|q| q + by).collect())
+                        }
+                    };
+                    self.reset_run();
+                }
+            }
+            Command::DeleteShape(i) => {
+                if i < self.shapes.len() {
+                    self.shapes.remove(i);
+                    self.selected = None;
+                    self.reset_run();
+                }
+            }
+            Command::Select(i) => self.selected = i,
+            Command::WrapBorder(m) => {
+                if let Some(img) = &self.image {
+                    let (w, h) = (img.width as f64, img.height as f64);
+                    let m = m.min(0.25 * w.min(h));
+                    self.shapes.push(Shape::Rect {
+                        min: Point::new(m, m),
+                        max: Point::new(w - m, h - m),
+                    });
+                    self.reset_run();
+                }
+            }
+            Command::FindSeeds => {
+                if let Some(img) = &self.image {
+                    let found = find_seeds(img, self.settings.polarity, self.settings.modality);
+                    self.notice = Some(format!("found {} objects: seeds placed", found.len()));
+                    self.shapes.extend(found);
+                    self.reset_run();
+                }
+            }
+            _ => unreachable!("not a edit shapes command: {c:?}"),
+        }
+    }
+
+    /// Playing, stepping and seeking.
+    fn playback(&mut self, c: Command) {
+        match c {
+            Command::Play => {
+                if self.ensure_run() {
+                    self.playing = true;
+                }
+            }
+            Command::Pause => self.playing = false,
+            Command::Step(n) => self.step_frames(n),
+            Command::StepToEvent => {
+                for _ in 0..5000 {
+                    self.step_frames(1);
+                    let done = self.run.as_ref().is_none_or(|r| r.evolver.is_finished());
+                    if done || self.shown_record().is_some_and(|r| !r.events.is_empty()) {
+                        break;
+                    }
+                }
+            }
+            Command::Reset => self.reset_run(),
+            Command::SeekFrame(n) => {
+                if let Some(r) = &self.run {
+                    let last = (r.history.len() - 1)
+                        .max(self.run_b.as_ref().map_or(0, |b| b.history.len() - 1));
+                    self.shown = n.min(last);
+                    self.playing = false;
+                }
+            }
+            _ => unreachable!("not a playback command: {c:?}"),
+        }
+    }
+
+    /// The tool and the parameters of the run.
+    fn set_parameter(&mut self, c: Command) {
+        match c {
+            Command::SetTool(t) => self.settings.tool = t,
+            Command::SetModality(m) => {
+                self.settings.modality = m;
+                self.reset_run();
+            }
+            Command::SetPolarity(p) => {
+                self.settings.polarity = p;
+                self.reset_run();
+            }
+            Command::SetMode(mode) => {
+                self.settings.mode = mode;
+                self.reset_run();
+            }
+            Command::SetCompare(mode) => {
+                self.settings.compare = mode;
+                self.reset_run();
+            }
+            Command::SetBroadPhase(kind) => {
+                self.settings.broad_phase = kind;
+                self.reset_run();
+            }
+            Command::ResetParameters => {
+                if let Some(img) = &self.image {
+                    self.settings.contrast = auto_contrast(img);
+                }
+                let d = Settings::default();
+                self.settings.weights = d.weights;
+                self.settings.step = d.step;
+                self.settings.min_area = d.min_area;
+                self.reset_run();
+            }
+            _ => unreachable!("not a set parameter command: {c:?}"),
+        }
+    }
+
+    /// Images, exports and sessions (files chosen in a dialog, or given).
+    fn files(&mut self, c: Command) {
+        match c {
+            Command::OpenImage(p) => match load_image(&p) {
+                Ok(f) => {
+                    let name = p
+                        .file_name()
+                        .map(|n| n.to_string_lossy().into_owned())
+                        .unwrap_or_default();
+                    self.settings.last_dir = p.parent().map(Path::to_path_buf);
+                    self.set_image(f, name);
+                    self.image_path = Some(p);
+                    self.error = None;
+                }
+                Err(e) => self.error = Some(e.into()),
+            },
+            Command::OpenDialog => {
+                let mut d = rfd::FileDialog::new()
+                    .add_filter("images", &["png", "jpg", "jpeg", "tif", "tiff"]);
+                if let Some(dir) = &self.settings.last_dir {
+                    d = d.set_directory(dir);
+                }
+                match d.pick_file() {
+                    Some(p) => self.apply_now(Command::OpenImage(p)),
+                    None => {
+                        self.notice = Some("no file chosen (is a desktop portal running?)".into())
+                    }
+                }
+            }
+            Command::Export(kind, path) => {
+                if let Err(e) = self.export(kind, &path) {
+                    self.error = Some(e);
+                } else {
+                    self.notice = Some(format!("wrote {}", path.display()));
+                }
+            }
+            Command::ExportDialog(kind) => {
+                let mut d = rfd::FileDialog::new()
+                    .add_filter(kind.extension(), &[kind.extension()])
+                    .set_file_name(format!("contours.{}", kind.extension()));
+                if let Some(dir) = &self.settings.last_dir {
+                    d = d.set_directory(dir);
+                }
+                match d.save_file() {
+                    Some(p) => self.apply_now(Command::Export(kind, p)),
+                    None => self.notice = Some("export cancelled (no file chosen)".into()),
+                }
+            }
+            Command::SessionDialog(save) => {
+                let mut d = rfd::FileDialog::new().add_filter("sessions", &["json"]);
+                if let Some(dir) = &self.settings.last_dir {
+                    d = d.set_directory(dir);
+                }
+                let chosen = if save {
+                    d.set_file_name(format!("{}.session.json", self.image_name))
+                        .save_file()
+                } else {
+                    d.pick_file()
+                };
+                match (chosen, save) {
+                    (Some(p), true) => self.apply_now(Command::SaveSession(p)),
+                    (Some(p), false) => self.apply_now(Command::OpenSession(p)),
+                    (None, _) => {
+                        self.notice = Some("no file chosen (is a desktop portal running?)".into())
+                    }
+                }
+            }
+            Command::SaveSession(p) => match self.save_session(&p) {
+                Ok(()) => self.notice = Some(format!("session saved to {}", p.display())),
+                Err(e) => self.error = Some(e),
+            },
+            Command::OpenSession(p) => {
+                if let Err(e) = self.open_session(&p) {
+                    self.error = Some(e);
+                }
+            }
+            _ => unreachable!("not a files command: {c:?}"),
+        }
+    }
+}
