@@ -17,6 +17,8 @@
 //! library builds with neither. `testkit` exposes the test kit (`check`) to tests,
 //! benches and fuzz targets.
 
+#![warn(missing_docs)]
+
 #[cfg(feature = "gui")]
 pub mod app;
 #[cfg(any(test, feature = "testkit"))]

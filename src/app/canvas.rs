@@ -42,7 +42,7 @@ fn contour_at(rings: &[super::RingView], at: Point) -> Option<u32> {
 }
 
 impl CanvasState {
-    /// After a hand edit: the vertex that now leads the drag (none: it is over).
+    /// The contour vertex a drag with the Edit tool moves (none: the drag is over).
     pub fn set_drag_lead(&mut self, lead: Option<u32>) {
         self.editing = lead;
     }
@@ -67,6 +67,34 @@ fn ring_color(id: u32) -> Color32 {
     egui::ecolor::Hsva::new(h, 0.85, 0.95, 1.0).into()
 }
 
+/// This frame's mapping between image pixels and the screen: the main half `rect`, the
+/// second engine's half `right` (side by side), both with the same zoom and offset.
+#[derive(Clone, Copy)]
+struct View {
+    rect: Rect,
+    right: Option<Rect>,
+    zoom: f32,
+    offset: Vec2,
+}
+
+impl View {
+    /// Where image point `p` is in the main half.
+    fn to_screen(self, p: Point) -> Pos2 {
+        self.rect.min + self.offset + Vec2::new(p.x as f32, p.y as f32) * self.zoom
+    }
+    /// The image point under screen point `s`, in whichever half it is.
+    fn to_image(self, s: Pos2) -> Point {
+        let origin = match self.right {
+            Some(r) if r.contains(s) => r.min,
+            _ => self.rect.min,
+        };
+        let v = (s - origin - self.offset) / self.zoom;
+        Point::new(v.x as f64, v.y as f64)
+    }
+}
+
+/// The canvas, drawn in layers: image, second engine's half, contours with their fill,
+/// motion flashes, the user's shapes, then the tools (input and their previews).
 pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
     let (response, full_painter) =
         ui.allocate_painter(ui.available_size(), Sense::click_and_drag());
@@ -92,7 +120,31 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
         );
         return;
     };
-    let cs = &mut app.canvas;
+    let view = navigate(&mut app.canvas, ui, &response, rect, right, &image, split);
+    image_layer(app, ui, &painter, view, &image);
+    if let Some(r) = right {
+        compare_layer(app, &full_painter, &painter, view, r);
+    }
+    contours_layer(app, &painter, view);
+    motion_layer(app, &painter, view);
+    if app.shown == 0 {
+        // The user's shapes, while they are what is on screen (frame 0).
+        shapes_layer(app, &painter, view);
+    }
+    tools_layer(app, ui, &response, &painter, view, &image);
+}
+
+/// Fits the image on first show, then zooms about the pointer (wheel) and pans
+/// (secondary or middle drag) for the next frame; returns this frame's view.
+fn navigate(
+    cs: &mut CanvasState,
+    ui: &egui::Ui,
+    response: &egui::Response,
+    rect: Rect,
+    right: Option<Rect>,
+    image: &crate::evolution::Field,
+    split: bool,
+) -> View {
     if cs.zoom == 0.0 || cs.fitted_for != (image.width, image.height, split) {
         let z = (rect.width() / image.width as f32)
             .min(rect.height() / image.height as f32)
@@ -101,25 +153,18 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
         cs.offset = (rect.size() - Vec2::new(image.width as f32, image.height as f32) * z) * 0.5;
         cs.fitted_for = (image.width, image.height, split);
     }
-    let (zoom, offset) = (cs.zoom, cs.offset);
     cs.rect = Some(rect);
-    let screen_from_image =
-        move |p: Point| rect.min + offset + Vec2::new(p.x as f32, p.y as f32) * zoom;
-    let image_from_screen = move |s: Pos2| {
-        let origin = match right {
-            Some(r) if r.contains(s) => r.min,
-            _ => rect.min,
-        };
-        let v = (s - origin - offset) / zoom;
-        Point::new(v.x as f64, v.y as f64)
+    let view = View {
+        rect,
+        right,
+        zoom: cs.zoom,
+        offset: cs.offset,
     };
-
-    // Zoom about the pointer; pan with secondary/middle drag.
     if let Some(hover) = response.hover_pos() {
         let scroll = ui.input(|i| i.smooth_scroll_delta.y);
         if scroll != 0.0 {
-            let anchor = image_from_screen(hover);
-            let nz = (zoom * (scroll * 0.002).exp()).clamp(0.05, 64.0);
+            let anchor = view.to_image(hover);
+            let nz = (view.zoom * (scroll * 0.002).exp()).clamp(0.05, 64.0);
             cs.zoom = nz;
             cs.offset = hover - rect.min - Vec2::new(anchor.x as f32, anchor.y as f32) * nz;
         }
@@ -129,8 +174,17 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
     {
         cs.offset += response.drag_delta();
     }
+    view
+}
 
-    // The image, through the contrast window.
+/// The image through the contrast window (the texture is rebuilt when the window moves).
+fn image_layer(
+    app: &mut TopoApp,
+    ui: &egui::Ui,
+    painter: &egui::Painter,
+    view: View,
+    image: &crate::evolution::Field,
+) {
     if app.texture.is_none() || app.texture_contrast != app.settings.contrast {
         let (lo, hi) = app.settings.contrast;
         let span = (hi - lo).max(1e-3);
@@ -146,138 +200,144 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
         );
         app.texture_contrast = app.settings.contrast;
     }
-    let img_rect = Rect::from_min_max(
-        screen_from_image(Point::new(0.0, 0.0)),
-        screen_from_image(Point::new(image.width as f64, image.height as f64)),
-    );
     if let Some(t) = &app.texture {
-        painter.image(
-            t.id(),
-            img_rect,
-            Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0)),
-            Color32::WHITE,
-        );
+        painter.image(t.id(), image_rect(view, image), UV, Color32::WHITE);
     }
+}
 
-    // The second engine's half: the same image and view, its contours.
-    if let (Some(r), Some(t)) = (right, &app.texture) {
-        let p2 = full_painter.with_clip_rect(r);
-        let shift = r.min - rect.min;
-        p2.image(
-            t.id(),
-            img_rect.translate(shift),
-            Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0)),
-            Color32::WHITE,
-        );
-        if let Some(rec) = app.shown_record_b() {
-            for ring in &rec.rings {
-                let mut pts: Vec<Pos2> = ring
-                    .points
-                    .iter()
-                    .map(|&p| screen_from_image(p) + shift)
-                    .collect();
-                pts.push(pts[0]);
-                p2.add(egui::Shape::line(
-                    pts,
-                    Stroke::new(if ring.hole { 1.5 } else { 2.0 }, ring_color(ring.id)),
-                ));
-            }
-        }
-        let label = |p: &egui::Painter, at: Rect, text: String| {
-            p.text(
-                at.min + Vec2::new(8.0, 6.0),
-                egui::Align2::LEFT_TOP,
-                text,
-                egui::FontId::proportional(15.0),
-                Color32::from_rgb(255, 230, 120),
-            );
-        };
-        let count = |rec: Option<&super::FrameRecord>| {
-            rec.map_or(String::new(), |r| format!(" — {} contours", r.contours))
-        };
-        label(
-            &p2,
-            r,
-            format!(
-                "{}{}",
-                app.settings.compare.map_or("", |m| m.name()),
-                count(app.shown_record_b())
-            ),
-        );
-        label(
-            &painter,
-            rect,
-            format!("{}{}", app.settings.mode.name(), count(app.shown_record())),
-        );
-        full_painter.line_segment(
-            [
-                Pos2::new(r.min.x - 1.0, r.min.y),
-                Pos2::new(r.min.x - 1.0, r.max.y),
-            ],
-            Stroke::new(2.0, Color32::DARK_GRAY),
-        );
+/// The whole texture.
+const UV: Rect = Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0));
+
+/// Where the image lies in the main half.
+fn image_rect(view: View, image: &crate::evolution::Field) -> Rect {
+    Rect::from_min_max(
+        view.to_screen(Point::new(0.0, 0.0)),
+        view.to_screen(Point::new(image.width as f64, image.height as f64)),
+    )
+}
+
+/// Draws rings as closed lines (holes thinner), each in its colour, shifted by `shift`.
+fn draw_rings(painter: &egui::Painter, view: View, rings: &[super::RingView], shift: Vec2) {
+    for ring in rings {
+        let mut pts: Vec<Pos2> = ring
+            .points
+            .iter()
+            .map(|&p| view.to_screen(p) + shift)
+            .collect();
+        pts.push(pts[0]);
+        painter.add(egui::Shape::line(
+            pts,
+            Stroke::new(if ring.hole { 1.5 } else { 2.0 }, ring_color(ring.id)),
+        ));
     }
+}
 
-    // Contours of the frame on screen.
-    let cs = &mut app.canvas;
-    let shown_a = app
+/// The second engine's half: the same image and view, its contours, both halves labelled.
+fn compare_layer(
+    app: &TopoApp,
+    full_painter: &egui::Painter,
+    painter: &egui::Painter,
+    view: View,
+    r: Rect,
+) {
+    let (Some(t), Some(image)) = (&app.texture, &app.image) else {
+        return;
+    };
+    let p2 = full_painter.with_clip_rect(r);
+    let shift = r.min - view.rect.min;
+    p2.image(
+        t.id(),
+        image_rect(view, image).translate(shift),
+        UV,
+        Color32::WHITE,
+    );
+    if let Some(rec) = app.shown_record_b() {
+        draw_rings(&p2, view, &rec.rings, shift);
+    }
+    let label = |p: &egui::Painter, at: Rect, text: String| {
+        p.text(
+            at.min + Vec2::new(8.0, 6.0),
+            egui::Align2::LEFT_TOP,
+            text,
+            egui::FontId::proportional(15.0),
+            Color32::from_rgb(255, 230, 120),
+        );
+    };
+    let count = |rec: Option<&super::FrameRecord>| {
+        rec.map_or(String::new(), |r| format!(" — {} contours", r.contours))
+    };
+    let compare = app.settings.compare.map_or("", |m| m.name());
+    label(&p2, r, format!("{compare}{}", count(app.shown_record_b())));
+    let mode = app.settings.mode.name();
+    label(
+        painter,
+        view.rect,
+        format!("{mode}{}", count(app.shown_record())),
+    );
+    full_painter.line_segment(
+        [
+            Pos2::new(r.min.x - 1.0, r.min.y),
+            Pos2::new(r.min.x - 1.0, r.max.y),
+        ],
+        Stroke::new(2.0, Color32::DARK_GRAY),
+    );
+}
+
+/// The contours of the frame on screen, their region filled (holes open).
+fn contours_layer(app: &mut TopoApp, painter: &egui::Painter, view: View) {
+    let Some(rec) = app
         .run
         .as_ref()
-        .and_then(|r| r.history.get(app.shown.min(r.history.len() - 1)));
-    if let Some(rec) = shown_a {
-        // Filling triangulates every ring; for large sets it waits until playback pauses
-        // so that playing stays fluid.
-        let small = rec.vertices <= FILL_WHILE_PLAYING_MAX_VERTICES;
-        if app.settings.show_fill && (small || !app.playing) {
-            let key = (rec.index, rec.vertices);
-            let stale = cs
-                .fill_cache
-                .as_ref()
-                .is_none_or(|(i, v, _)| (*i, *v) != key);
-            if stale {
-                cs.fill_cache = Some((key.0, key.1, fill::FillMesh::of(&rec.rings)));
-            }
-            if let Some((_, _, m)) = &cs.fill_cache {
-                painter.add(m.to_mesh(
-                    &screen_from_image,
-                    Color32::from_rgba_unmultiplied(255, 170, 60, 60),
-                ));
-            }
+        .and_then(|r| r.history.get(app.shown.min(r.history.len() - 1)))
+    else {
+        return;
+    };
+    // Filling triangulates every ring; for large sets it waits until playback pauses so
+    // that playing stays fluid.
+    let small = rec.vertices <= FILL_WHILE_PLAYING_MAX_VERTICES;
+    if app.settings.show_fill && (small || !app.playing) {
+        let cs = &mut app.canvas;
+        let key = (rec.index, rec.vertices);
+        let stale = cs
+            .fill_cache
+            .as_ref()
+            .is_none_or(|(i, v, _)| (*i, *v) != key);
+        if stale {
+            cs.fill_cache = Some((key.0, key.1, fill::FillMesh::of(&rec.rings)));
         }
-        for r in &rec.rings {
-            let mut pts: Vec<Pos2> = r.points.iter().map(|&p| screen_from_image(p)).collect();
-            pts.push(pts[0]);
-            let c = ring_color(r.id);
-            painter.add(egui::Shape::line(
-                pts,
-                Stroke::new(if r.hole { 1.5 } else { 2.0 }, c),
+        if let Some((_, _, m)) = &cs.fill_cache {
+            painter.add(m.to_mesh(
+                &|p| view.to_screen(p),
+                Color32::from_rgba_unmultiplied(255, 170, 60, 60),
             ));
         }
-        // Flash the motion regions of this frame's events (and the few before it).
-        let run = app.run.as_ref().expect("record exists");
-        for back in 0..6usize {
-            let Some(old) = app.shown.checked_sub(back).and_then(|i| run.history.get(i)) else {
-                break;
-            };
-            let alpha = 255 - back as u8 * 40;
-            for q in &old.motions {
-                let pts: Vec<Pos2> = q.iter().map(|&p| screen_from_image(p)).collect();
-                painter.add(egui::Shape::closed_line(
-                    pts,
-                    Stroke::new(2.5, Color32::from_rgba_unmultiplied(255, 40, 200, alpha)),
-                ));
-                painter.circle_stroke(
-                    screen_from_image(q[3]),
-                    10.0 - back as f32,
-                    Stroke::new(2.0, Color32::from_rgba_unmultiplied(255, 40, 200, alpha)),
-                );
-            }
+    }
+    draw_rings(painter, view, &rec.rings, Vec2::ZERO);
+}
+
+/// Flashes the motion regions of this frame's events and of the few frames before it.
+fn motion_layer(app: &TopoApp, painter: &egui::Painter, view: View) {
+    let Some(run) = app.run.as_ref() else { return };
+    for back in 0..6usize {
+        let Some(old) = app.shown.checked_sub(back).and_then(|i| run.history.get(i)) else {
+            break;
+        };
+        let color = Color32::from_rgba_unmultiplied(255, 40, 200, 255 - back as u8 * 40);
+        for q in &old.motions {
+            let pts: Vec<Pos2> = q.iter().map(|&p| view.to_screen(p)).collect();
+            painter.add(egui::Shape::closed_line(pts, Stroke::new(2.5, color)));
+            painter.circle_stroke(
+                view.to_screen(q[3]),
+                10.0 - back as f32,
+                Stroke::new(2.0, color),
+            );
         }
     }
+}
 
-    // The user's shapes, while they are what is on screen (frame 0).
-    let shapes_visible = app.shown == 0;
-    for (i, s) in app.shapes.iter().enumerate().filter(|_| shapes_visible) {
+/// The user's shapes, the selected one highlighted.
+fn shapes_layer(app: &TopoApp, painter: &egui::Painter, view: View) {
+    for (i, s) in app.shapes.iter().enumerate() {
         let sel = app.selected == Some(i);
         let stroke = Stroke::new(
             if sel { 2.5 } else { 1.5 },
@@ -289,12 +349,13 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
         );
         match s {
             Shape::Disk { center, radius } => {
-                painter.circle_stroke(screen_from_image(*center), *radius as f32 * zoom, stroke);
-                painter.circle_filled(screen_from_image(*center), 2.0, stroke.color);
+                let c = view.to_screen(*center);
+                painter.circle_stroke(c, *radius as f32 * view.zoom, stroke);
+                painter.circle_filled(c, 2.0, stroke.color);
             }
             Shape::Rect { min, max } => {
                 painter.rect_stroke(
-                    Rect::from_min_max(screen_from_image(*min), screen_from_image(*max)),
+                    Rect::from_min_max(view.to_screen(*min), view.to_screen(*max)),
                     0.0,
                     stroke,
                     egui::StrokeKind::Middle,
@@ -302,20 +363,30 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
             }
             Shape::Polygon(p) => {
                 painter.add(egui::Shape::closed_line(
-                    p.iter().map(|&q| screen_from_image(q)).collect(),
+                    p.iter().map(|&q| view.to_screen(q)).collect(),
                     stroke,
                 ));
             }
         }
     }
+}
 
-    // Tools.
+/// The tools: presses, drags and releases become commands; drawing previews.
+fn tools_layer(
+    app: &mut TopoApp,
+    ui: &egui::Ui,
+    response: &egui::Response,
+    painter: &egui::Painter,
+    view: View,
+    image: &crate::evolution::Field,
+) {
     let tool = app.settings.tool;
+    let zoom = view.zoom;
+    let cs = &mut app.canvas;
     let pointer = response.interact_pointer_pos().or(response.hover_pos());
-    let primary_down = response.drag_started_by(egui::PointerButton::Primary);
-    if primary_down {
+    if response.drag_started_by(egui::PointerButton::Primary) {
         if let Some(p) = pointer {
-            let at = image_from_screen(p);
+            let at = view.to_image(p);
             cs.drag_from_in_image = Some(at);
             cs.drag_to_in_image = Some(at);
             if tool == Tool::Select {
@@ -324,123 +395,127 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
             }
             if tool == Tool::Edit {
                 // The vertex under the press (a drag starts a few pixels later) in the
-                // frame on screen; the run is put back at that frame, so later frames
-                // start from the edit.
+                // frame on screen.
                 let at = ui
                     .input(|i| i.pointer.press_origin())
-                    .map_or(at, image_from_screen);
-                let shown = app.shown;
-                cs.editing = app.run.as_mut().and_then(|run| {
-                    run.rewind(shown.min(run.history.len() - 1));
-                    run.evolver.vertex_near(at, 8.0 / zoom as f64)
+                    .map_or(at, |s| view.to_image(s));
+                app.commands.push(Command::GrabVertex {
+                    at,
+                    tol: 8.0 / zoom as f64,
                 });
             }
         }
     }
     if response.dragged_by(egui::PointerButton::Primary) {
         if let (Some(p), Some(_)) = (pointer, cs.drag_from_in_image) {
-            cs.drag_to_in_image = Some(image_from_screen(p));
+            cs.drag_to_in_image = Some(view.to_image(p));
             if let (Tool::Edit, Some(v)) = (tool, cs.editing) {
-                let to = image_from_screen(p);
+                let to = view.to_image(p);
                 app.commands.push(Command::HandMove { vertex: v, to });
             }
         }
     }
     if let (Some(a), Some(b)) = (cs.drag_from_in_image, cs.drag_to_in_image) {
+        let yellow = Stroke::new(1.5, Color32::YELLOW);
         match tool {
             Tool::Seed => {
-                painter.circle_stroke(
-                    screen_from_image(a),
-                    (a.dist(b) as f32 * zoom).max(2.0),
-                    Stroke::new(1.5, Color32::YELLOW),
-                );
+                let r = (a.dist(b) as f32 * zoom).max(2.0);
+                painter.circle_stroke(view.to_screen(a), r, yellow);
             }
             Tool::Rect => {
                 painter.rect_stroke(
-                    Rect::from_two_pos(screen_from_image(a), screen_from_image(b)),
+                    Rect::from_two_pos(view.to_screen(a), view.to_screen(b)),
                     0.0,
-                    Stroke::new(1.5, Color32::YELLOW),
+                    yellow,
                     egui::StrokeKind::Middle,
                 );
             }
             _ => {}
         }
     }
-    let released = response.drag_stopped_by(egui::PointerButton::Primary) || response.clicked();
-    if released {
-        let end = pointer.map(image_from_screen);
+    if response.drag_stopped_by(egui::PointerButton::Primary) || response.clicked() {
+        let end = pointer.map(|s| view.to_image(s));
         let start = cs.drag_from_in_image.take().or(end);
         let stop = cs.drag_to_in_image.take().or(end);
         if let (Some(a), Some(b)) = (start, stop) {
-            let inside = |p: Point| {
-                p.x >= 0.0 && p.y >= 0.0 && p.x <= image.width as f64 && p.y <= image.height as f64
-            };
-            match tool {
-                Tool::Seed if inside(a) => {
-                    // A click makes a seed of default radius; a drag sets the radius.
-                    let r = if a.dist(b) < 2.0 { 5.0 } else { a.dist(b) };
-                    app.commands.push(Command::AddShape(Shape::Disk {
-                        center: a,
-                        radius: r,
-                    }));
-                }
-                Tool::Rect if a.dist(b) >= 3.0 => {
-                    let min = Point::new(a.x.min(b.x).max(0.0), a.y.min(b.y).max(0.0));
-                    let max = Point::new(
-                        a.x.max(b.x).min(image.width as f64),
-                        a.y.max(b.y).min(image.height as f64),
-                    );
-                    app.commands
-                        .push(Command::AddShape(Shape::Rect { min, max }));
-                }
-                Tool::Polygon if inside(b) => {
-                    let close =
-                        cs.polygon.len() >= 3 && (b.dist(cs.polygon[0]) * zoom as f64) < 8.0;
-                    if close || response.double_clicked() {
-                        if cs.polygon.len() >= 3 {
-                            app.commands
-                                .push(Command::AddShape(Shape::Polygon(std::mem::take(
-                                    &mut cs.polygon,
-                                ))));
-                        }
-                    } else {
-                        cs.polygon.push(b);
-                    }
-                }
-                // A click (no vertex dragged) selects the contour under it.
-                Tool::Edit if cs.editing.take().is_none() || a.dist(b) == 0.0 => {
-                    let shown = app.shown;
-                    let id = app
-                        .run
-                        .as_ref()
-                        .and_then(|r| r.history.get(shown.min(r.history.len() - 1)))
-                        .and_then(|r| contour_at(&r.rings, b));
-                    app.commands.push(Command::SelectContour(id));
-                }
-                Tool::Select => match cs.moving.take() {
-                    Some(i) if a.dist(b) > 0.0 => app.commands.push(Command::MoveShape {
-                        index: i,
-                        by: b - a,
-                    }),
-                    Some(_) => {}
-                    // A plain click (no drag began): select what is under it.
-                    None => app.commands.push(Command::Select(hit_shape(
-                        &app.shapes,
-                        b,
-                        6.0 / zoom as f64,
-                    ))),
-                },
-                _ => {}
-            }
+            release(app, response, view, image, a, b);
         }
     }
+    let cs = &app.canvas;
     if !cs.polygon.is_empty() {
-        let mut pts: Vec<Pos2> = cs.polygon.iter().map(|&p| screen_from_image(p)).collect();
+        let mut pts: Vec<Pos2> = cs.polygon.iter().map(|&p| view.to_screen(p)).collect();
         if let Some(h) = response.hover_pos() {
             pts.push(h);
         }
         painter.add(egui::Shape::line(pts, Stroke::new(1.5, Color32::YELLOW)));
     }
+}
+
+/// A press at `a` released at `b`: what it makes with the current tool.
+fn release(
+    app: &mut TopoApp,
+    response: &egui::Response,
+    view: View,
+    image: &crate::evolution::Field,
+    a: Point,
+    b: Point,
+) {
+    let zoom = view.zoom;
+    let cs = &mut app.canvas;
+    let inside = |p: Point| {
+        p.x >= 0.0 && p.y >= 0.0 && p.x <= image.width as f64 && p.y <= image.height as f64
+    };
+    let command = match app.settings.tool {
+        Tool::Seed if inside(a) => {
+            // A click makes a seed of default radius; a drag sets the radius.
+            let r = if a.dist(b) < 2.0 { 5.0 } else { a.dist(b) };
+            Some(Command::AddShape(Shape::Disk {
+                center: a,
+                radius: r,
+            }))
+        }
+        Tool::Rect if a.dist(b) >= 3.0 => {
+            let min = Point::new(a.x.min(b.x).max(0.0), a.y.min(b.y).max(0.0));
+            let max = Point::new(
+                a.x.max(b.x).min(image.width as f64),
+                a.y.max(b.y).min(image.height as f64),
+            );
+            Some(Command::AddShape(Shape::Rect { min, max }))
+        }
+        Tool::Polygon if inside(b) => {
+            let close = cs.polygon.len() >= 3 && (b.dist(cs.polygon[0]) * zoom as f64) < 8.0;
+            if !(close || response.double_clicked()) {
+                cs.polygon.push(b);
+                None
+            } else if cs.polygon.len() >= 3 {
+                Some(Command::AddShape(Shape::Polygon(std::mem::take(
+                    &mut cs.polygon,
+                ))))
+            } else {
+                None
+            }
+        }
+        // A click (no vertex dragged) selects the contour under it.
+        Tool::Edit if cs.editing.take().is_none() || a.dist(b) == 0.0 => {
+            let id = app.shown_record().and_then(|r| contour_at(&r.rings, b));
+            Some(Command::SelectContour(id))
+        }
+        Tool::Select => match cs.moving.take() {
+            Some(i) if a.dist(b) > 0.0 => Some(Command::MoveShape {
+                index: i,
+                by: b - a,
+            }),
+            Some(_) => None,
+            // A plain click (no drag began): select what is under it.
+            None => Some(Command::Select(hit_shape(
+                &app.shapes,
+                b,
+                6.0 / zoom as f64,
+            ))),
+        },
+        _ => None,
+    };
+    app.commands.extend(command);
 }
 
 impl CanvasState {

@@ -97,6 +97,12 @@ pub enum Command {
         vertex: u32,
         to: Point,
     },
+    /// Hand edit begins: the run goes back to the frame on screen (later frames start
+    /// from the edit) and the contour vertex nearest to `at` within `tol` is grabbed.
+    GrabVertex {
+        at: Point,
+        tol: f64,
+    },
     /// Hand edit: delete the contour `id` of the frame on screen (with its holes).
     DeleteContour(u32),
     /// Select a contour of the frame on screen to see its measurements (or none).
@@ -116,9 +122,10 @@ impl TopoApp {
             self.history.push(before);
         }
         match c {
-            Command::HandMove { .. } | Command::DeleteContour(..) | Command::SelectContour(..) => {
-                self.hand_edit(c)
-            }
+            Command::HandMove { .. }
+            | Command::GrabVertex { .. }
+            | Command::DeleteContour(..)
+            | Command::SelectContour(..) => self.hand_edit(c),
             Command::Undo | Command::Redo => self.undo_redo(c),
             Command::AddShape(..)
             | Command::MoveShape { .. }
@@ -167,6 +174,14 @@ impl TopoApp {
                     self.log.retain(|(f, _)| *f <= at);
                     self.log.extend(events.into_iter().map(|e| (at, e)));
                 }
+            }
+            Command::GrabVertex { at, tol } => {
+                let shown = self.shown;
+                let grabbed = self.run.as_mut().and_then(|run| {
+                    run.rewind(shown.min(run.history.len() - 1));
+                    run.evolver.vertex_near(at, tol)
+                });
+                self.canvas.set_drag_lead(grabbed);
             }
             Command::DeleteContour(id) => {
                 if self.ensure_run() {
