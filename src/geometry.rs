@@ -17,14 +17,18 @@ use std::ops::{Add, Mul, Sub};
 /// A point (or vector) in image coordinates, pixels.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Point {
+    /// Abscissa, pixels (to the right).
     pub x: f64,
+    /// Ordinate, pixels (down).
     pub y: f64,
 }
 
 impl Point {
+    /// The point (x, y).
     pub const fn new(x: f64, y: f64) -> Self {
         Self { x, y }
     }
+    /// Dot product.
     pub fn dot(self, o: Point) -> f64 {
         self.x * o.x + self.y * o.y
     }
@@ -32,20 +36,25 @@ impl Point {
     pub fn cross(self, o: Point) -> f64 {
         self.x * o.y - self.y * o.x
     }
+    /// Squared length.
     #[inline]
     pub fn norm2(self) -> f64 {
         self.x * self.x + self.y * self.y
     }
+    /// Length.
     pub fn norm(self) -> f64 {
         // Not hypot: coordinates are pixels, far from overflow, and this is on hot paths.
         (self.x * self.x + self.y * self.y).sqrt()
     }
+    /// Distance to `o`.
     pub fn dist(self, o: Point) -> f64 {
         (self - o).norm()
     }
+    /// The point at `t` from `self` (0) to `o` (1).
     pub fn lerp(self, o: Point, t: f64) -> Point {
         Point::new(self.x + (o.x - self.x) * t, self.y + (o.y - self.y) * t)
     }
+    /// Both coordinates are finite.
     pub fn is_finite(self) -> bool {
         self.x.is_finite() && self.y.is_finite()
     }
@@ -116,11 +125,14 @@ pub fn fmax(a: f64, b: f64) -> f64 {
 /// Axis-aligned box.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
+    /// Lower corner.
     pub min: Point,
+    /// Upper corner.
     pub max: Point,
 }
 
 impl Aabb {
+    /// The smallest box holding `points`.
     #[inline]
     pub fn of(points: &[Point]) -> Aabb {
         let mut b = Aabb {
@@ -135,6 +147,7 @@ impl Aabb {
         }
         b
     }
+    /// The box grown by `r` on every side.
     #[inline]
     pub fn expand(self, r: f64) -> Aabb {
         Aabb {
@@ -142,6 +155,7 @@ impl Aabb {
             max: Point::new(self.max.x + r, self.max.y + r),
         }
     }
+    /// Whether `p` lies in the box (borders included).
     #[inline]
     pub fn contains(&self, p: Point) -> bool {
         p.x >= self.min.x && p.x <= self.max.x && p.y >= self.min.y && p.y <= self.max.y
@@ -165,9 +179,13 @@ pub enum SegmentIntersection {
     /// segment, `u` along the second, `at` the (rounded) crossing point, and
     /// `second_from_left` says the second segment starts on the left of the first.
     Proper {
+        /// Parameter along the first segment.
         t: f64,
+        /// Parameter along the second segment.
         u: f64,
+        /// The crossing point.
         at: Point,
+        /// The second segment comes from the left of the first.
         second_from_left: bool,
     },
     /// They share exactly one point, which is an endpoint of at least one of them.

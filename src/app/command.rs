@@ -27,9 +27,13 @@ pub enum Tool {
 /// What an export writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ExportKind {
+    /// Scalable vector graphics of the contours.
     Svg,
+    /// GeoJSON as QuPath reads it.
     GeoJson,
+    /// Binary mask (PNG).
     Mask,
+    /// One row per contour: measurements.
     Csv,
     /// 16-bit label image (TIFF).
     Labels,
@@ -38,6 +42,7 @@ pub enum ExportKind {
 }
 
 impl ExportKind {
+    /// The file extension of this kind.
     pub fn extension(self) -> &'static str {
         match self {
             ExportKind::Svg => "svg",
@@ -53,37 +58,56 @@ impl ExportKind {
 /// Everything a widget can ask for; applied in one place, [`TopoApp::apply`].
 #[derive(Clone, Debug, PartialEq)]
 pub enum Command {
+    /// Open the image at a path.
     OpenImage(PathBuf),
     /// Open a file dialog and then the chosen image.
     OpenDialog,
+    /// Add a shape to the initialisation.
     AddShape(Shape),
+    /// Move shape `index` by a vector.
     MoveShape {
+        /// The shape.
         index: usize,
+        /// By how much, in image pixels.
         by: Point,
     },
+    /// Delete shape `index`.
     DeleteShape(usize),
+    /// Select a shape (or none).
     Select(Option<usize>),
+    /// Choose the canvas tool.
     SetTool(Tool),
+    /// Add a wrap rectangle this many pixels inside the border.
     WrapBorder(f64),
     /// Place one seed per object found in the image (automatic seeds), as editable shapes.
     FindSeeds,
     /// The kind of image (phase contrast treats the halo as background).
     SetModality(Modality),
+    /// Play the evolution.
     Play,
+    /// Pause playback.
     Pause,
+    /// Step this many frames.
     Step(usize),
     /// Step until a frame with a topology event (or convergence).
     StepToEvent,
+    /// Throw the run away (undoable) and show the initialisation.
     Reset,
     /// Show recorded frame `n` (0: the initialisation).
     SeekFrame(usize),
+    /// Write the frame on screen to a file.
     Export(ExportKind, PathBuf),
+    /// Choose a file in a dialog, then export.
     ExportDialog(ExportKind),
+    /// Objects darker or brighter than the background.
     SetPolarity(Polarity),
+    /// The engine.
     SetMode(Mode),
+    /// The broad phase of the crossing search.
     SetBroadPhase(BroadPhaseKind),
     /// Run a second engine beside the first, on the same image and shapes (or stop).
     SetCompare(Option<Mode>),
+    /// Put the force weights, step and minimum area back to their defaults.
     ResetParameters,
     /// Save the image reference, shapes, parameters and the frame on screen as a session.
     SaveSession(PathBuf),
@@ -94,13 +118,17 @@ pub enum Command {
     /// Hand edit: move contour vertex `vertex` of the frame on screen to `to`, through the
     /// topology core (merges, splits and holes happen exactly, logged as events).
     HandMove {
+        /// The vertex (of the frame on screen).
         vertex: u32,
+        /// Where to, in image pixels.
         to: Point,
     },
     /// Hand edit begins: the run goes back to the frame on screen (later frames start
     /// from the edit) and the contour vertex nearest to `at` within `tol` is grabbed.
     GrabVertex {
+        /// Where the press was, in image pixels.
         at: Point,
+        /// How far a vertex may be, in image pixels.
         tol: f64,
     },
     /// Hand edit: delete the contour `id` of the frame on screen (with its holes).

@@ -28,30 +28,40 @@ pub const SAMPLE_PNG: &[u8] = include_bytes!("../../assets/cells.png");
 
 /// The whole app state.
 pub struct TopoApp {
+    /// The image's name as the title shows it.
     pub image_name: String,
     /// The file the image came from (none for the bundled sample): exports never replace it.
     pub image_path: Option<PathBuf>,
+    /// The image.
     pub image: Option<Arc<Field>>,
     texture: Option<egui::TextureHandle>,
     texture_contrast: (f32, f32),
+    /// The initialisation: the user's shapes.
     pub shapes: Vec<Shape>,
+    /// The selected shape.
     pub selected: Option<usize>,
+    /// The settings of the run and the view.
     pub settings: Settings,
+    /// The run on screen.
     pub run: Option<Run>,
     /// The second engine's run in the side-by-side view (same frames as `run`).
     pub run_b: Option<Run>,
     /// The recorded frame on screen.
     pub shown: usize,
+    /// Playback is running.
     pub playing: bool,
     play_clock: f64,
+    /// The topology events so far, with their frame.
     pub log: Vec<(usize, TopologyEvent)>,
     /// The last error, shown in the status bar until the next one or a success.
     pub error: Option<AppError>,
+    /// The last notice (what just happened), shown in the status bar.
     pub notice: Option<String>,
     /// Time of the last frame step, ms.
     pub step_ms: f64,
     /// Time spent drawing the canvas last frame, ms.
     pub draw_ms: f64,
+    /// Commands queued this frame, applied at its end.
     pub commands: Vec<Command>,
     canvas: canvas::CanvasState,
     /// Undo and redo steps.
@@ -136,6 +146,7 @@ impl TopoApp {
         self.log.clear();
     }
 
+    /// The run's parameters from the settings.
     pub fn params(&self) -> Params {
         Params {
             polarity: self.settings.polarity,

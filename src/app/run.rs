@@ -8,22 +8,34 @@ use crate::topology::TopologyEvent;
 /// One ring as recorded for display.
 #[derive(Clone, Debug)]
 pub struct RingView {
+    /// The ring's contour id.
     pub id: u32,
+    /// The ring bounds a hole.
     pub hole: bool,
+    /// Its vertices in order.
     pub points: Vec<Point>,
 }
 
 /// A recorded frame: enough to draw it and to plot its statistics.
 #[derive(Clone, Debug)]
 pub struct FrameRecord {
+    /// The frame's index (0: the initialisation).
     pub index: usize,
+    /// The rings.
     pub rings: Vec<RingView>,
+    /// The frame's topology events.
     pub events: Vec<TopologyEvent>,
+    /// The motion regions (p, o, n, q) that caused them.
     pub motions: Vec<[Point; 4]>,
+    /// Area of the region, square pixels.
     pub area: f64,
+    /// Contours.
     pub contours: usize,
+    /// Vertices.
     pub vertices: usize,
+    /// Sum of |region score|: falls as contours settle.
     pub energy: f64,
+    /// The run converged with this frame.
     pub converged: bool,
 }
 
@@ -62,6 +74,7 @@ impl FrameRecord {
 /// An evolution in progress with its recorded history.
 #[derive(Clone)]
 pub struct Run {
+    /// The evolver, at the run's head frame.
     pub evolver: Evolver,
     /// Frame 0 is the initialisation.
     pub history: Vec<FrameRecord>,

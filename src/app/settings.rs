@@ -9,20 +9,31 @@ use std::path::PathBuf;
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
 pub struct Settings {
+    /// Objects darker or brighter than the background.
     pub polarity: Polarity,
+    /// The kind of image.
     pub modality: Modality,
+    /// The engine.
     pub mode: Mode,
+    /// The broad phase of the crossing search.
     pub broad_phase: BroadPhaseKind,
     /// The engine shown side by side with `mode`, if any.
     pub compare: Option<Mode>,
+    /// Force weights.
     pub weights: ForceWeights,
+    /// Largest step per frame, in grid spacings.
     pub step: f64,
+    /// Smallest region or hole kept, square pixels.
     pub min_area: f64,
     /// Frames per second while playing.
     pub speed: f32,
+    /// The canvas tool.
     pub tool: Tool,
+    /// Contrast window (low, high) of the image on screen.
     pub contrast: (f32, f32),
+    /// Fill regions on the canvas.
     pub show_fill: bool,
+    /// The folder of the last file opened.
     pub last_dir: Option<PathBuf>,
 }
 

@@ -31,6 +31,7 @@ pub trait BroadPhase {
     }
     /// Number of registered vertices.
     fn len(&self) -> usize;
+    /// Whether no vertex is stored.
     fn is_empty(&self) -> bool {
         self.len() == 0
     }
@@ -54,6 +55,7 @@ pub(crate) fn push_outside_prevs(b: &Aabb, prev: &[u32], pos: &[Point], out: &mu
 /// along the rings meets as many vertices registered in the region as it holds, nothing
 /// else lies in the box.
 pub trait Countable: BroadPhase {
+    /// A region of the structure a quiet move's count reads.
     type Region: Copy;
     /// The part of the broad phase a query for `b` would read, with the number of
     /// vertices registered in it; `None` when that part is too large to count cheaply.
@@ -78,6 +80,7 @@ pub enum BroadPhaseKind {
 }
 
 impl BroadPhaseKind {
+    /// The name used on the command line.
     pub fn name(self) -> &'static str {
         match self {
             BroadPhaseKind::Bins => "bins",
@@ -90,7 +93,9 @@ impl BroadPhaseKind {
 /// dispatches by one predictable branch.
 #[derive(Clone, Debug)]
 pub enum Broad {
+    /// Uniform vertex bins (seed 003).
     Bins(VertexBins),
+    /// The staggered spatial hash (seed 001).
     Hash(StaggeredHash),
 }
 
@@ -103,6 +108,7 @@ impl Broad {
         }
     }
 
+    /// Which kind this is.
     pub fn kind(&self) -> BroadPhaseKind {
         match self {
             Broad::Bins(_) => BroadPhaseKind::Bins,

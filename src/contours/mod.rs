@@ -46,14 +46,24 @@ impl std::fmt::Display for ContourId {
 /// Why a ring could not be added.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum RingError {
+    /// Fewer than three vertices.
     #[error("a ring needs at least 3 vertices, got {0}")]
     TooFewVertices(usize),
+    /// A coordinate is not finite.
     #[error("ring has a non-finite coordinate")]
     NotFinite,
     #[error("ring edge of length {len} exceeds the edge bound {bound}")]
-    EdgeTooLong { len: f64, bound: f64 },
+    /// An edge longer than the bound.
+    EdgeTooLong {
+        /// The edge's length.
+        len: f64,
+        /// The bound.
+        bound: f64,
+    },
+    /// The ring has no area.
     #[error("ring has zero area")]
     ZeroArea,
+    /// The ring crosses or touches itself or another ring.
     #[error("ring crosses or touches itself or another ring")]
     Intersects,
 }
@@ -298,12 +308,15 @@ impl ContourSet {
     pub fn position(&self, v: VertexId) -> Point {
         self.pos[v as usize]
     }
+    /// The vertex after `v` on its ring.
     pub fn next(&self, v: VertexId) -> VertexId {
         self.next[v as usize]
     }
+    /// The vertex before `v` on its ring.
     pub fn prev(&self, v: VertexId) -> VertexId {
         self.prev[v as usize]
     }
+    /// Whether `v` is a live vertex.
     pub fn is_alive(&self, v: VertexId) -> bool {
         (v as usize) < self.label.len() && self.label[v as usize] != NIL
     }
@@ -335,6 +348,7 @@ impl ContourSet {
             .filter(|(_, r)| r.is_some())
             .map(|(i, _)| ContourId(i as u32))
     }
+    /// Whether ring `id` exists.
     pub fn contains(&self, id: ContourId) -> bool {
         matches!(self.rings.get(id.0 as usize), Some(Some(_)))
     }

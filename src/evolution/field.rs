@@ -12,12 +12,16 @@ use crate::geometry::Point;
 /// A gray image, values in [0, 1].
 #[derive(Clone, Debug)]
 pub struct Field {
+    /// Width in pixels.
     pub width: usize,
+    /// Height in pixels.
     pub height: usize,
+    /// Values row by row.
     pub data: Vec<f32>,
 }
 
 impl Field {
+    /// A field from its values row by row.
     pub fn new(width: usize, height: usize, data: Vec<f32>) -> Self {
         assert_eq!(data.len(), width * height, "field size");
         assert!(width > 0 && height > 0, "empty field");
@@ -28,6 +32,7 @@ impl Field {
         }
     }
 
+    /// The value of pixel (x, y).
     #[inline]
     pub fn at(&self, x: usize, y: usize) -> f32 {
         self.data[y * self.width + x]
@@ -146,18 +151,23 @@ fn blur_row<const N: usize>(row: &[f32], k: &[f32; N], padded: &mut [f32], out: 
 /// costs more than the few samples an evolution takes where its contours pass.
 #[derive(Clone, Debug)]
 pub struct Level {
+    /// The level's image.
     pub image: Field,
 }
 
 /// What [`Level::sample`] returns at a point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Texel {
+    /// Bilinear value.
     pub value: f64,
+    /// Gradient (central differences, bilinear).
     pub gradient: Point,
+    /// Gradient magnitude.
     pub gmag: f64,
 }
 
 impl Level {
+    /// A level over `image` with its gradient.
     pub fn new(image: Field) -> Self {
         Level { image }
     }
@@ -215,6 +225,7 @@ impl Level {
 /// resolution.
 #[derive(Clone, Debug)]
 pub struct Pyramid {
+    /// Levels, finest (0) first.
     pub levels: Vec<Level>,
 }
 

@@ -30,10 +30,15 @@ pub enum Polarity {
 /// Weights of the forces (defaults serve every public case; see `Params`).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ForceWeights {
+    /// Weight of the region term: how strongly intensity pulls the contour towards the decision level.
     pub region: f64,
+    /// Weight of the balloon force: a constant push outward inside objects.
     pub balloon: f64,
+    /// Weight of the edge term: attraction to strong gradients.
     pub edge: f64,
+    /// Weight of stretching: pull towards the neighbours' midpoint.
     pub stretch: f64,
+    /// Weight of bending: smoothing of that pull.
     pub bend: f64,
 }
 
@@ -52,7 +57,9 @@ impl Default for ForceWeights {
 /// Object and background intensities.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct IntensityModel {
+    /// Mean intensity of objects.
     pub object: f64,
+    /// Mean intensity of the background.
     pub background: f64,
 }
 

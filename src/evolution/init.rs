@@ -8,8 +8,21 @@ use crate::geometry::{signed_area, Aabb, Point};
 /// One shape of an initialisation, in image pixels.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Shape {
-    Disk { center: Point, radius: f64 },
-    Rect { min: Point, max: Point },
+    /// A seed disk.
+    Disk {
+        /// Its centre.
+        center: Point,
+        /// Its radius, pixels.
+        radius: f64,
+    },
+    /// A rectangle.
+    Rect {
+        /// Lower corner.
+        min: Point,
+        /// Upper corner.
+        max: Point,
+    },
+    /// A polygon through these corners.
     Polygon(Vec<Point>),
 }
 

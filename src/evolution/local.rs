@@ -326,7 +326,9 @@ fn extreme_1d(
 /// bright one's, and flat background far from the level shrinks a wrap at full speed).
 #[derive(Clone, Debug)]
 pub struct Decision {
+    /// Per pixel, the decision level of the region term.
     pub level: Field,
+    /// Per pixel, half the local contrast (scales the region score).
     pub half: Field,
     /// +1 for bright objects, −1 for dark ones.
     pub sign: f64,

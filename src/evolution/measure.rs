@@ -7,7 +7,9 @@ use crate::geometry::Point;
 /// One region: an outer ring and its holes.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Region {
+    /// The outer ring.
     pub id: ContourId,
+    /// Its holes.
     pub holes: Vec<ContourId>,
     /// Area of the outer ring minus its holes, square pixels.
     pub area: f64,
@@ -15,6 +17,7 @@ pub struct Region {
     pub perimeter: f64,
     /// 4πA/P²: 1 for a disk.
     pub circularity: f64,
+    /// Centroid of the region (holes excluded).
     pub centroid: Point,
 }
 

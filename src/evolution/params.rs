@@ -93,6 +93,7 @@ impl Default for Params {
     }
 }
 
+/// Why an evolution could not start.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum EvolveError {
     /// No shape, or none left inside the image.

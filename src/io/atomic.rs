@@ -22,19 +22,32 @@ use std::path::{Path, PathBuf};
 /// Why an output cannot be written. Every variant is the user's to fix (exit code 2).
 #[derive(Debug, thiserror::Error)]
 pub enum OutputError {
+    /// The path has no file name.
     #[error("cannot write {0}: it is not a file name")]
     NotAFileName(PathBuf),
     #[error("cannot write {path}: folder {dir} does not exist")]
-    NoFolder { path: PathBuf, dir: PathBuf },
+    /// The output's folder does not exist.
+    NoFolder {
+        /// The output.
+        path: PathBuf,
+        /// Its folder.
+        dir: PathBuf,
+    },
+    /// The path exists and is not a regular file.
     #[error("cannot write {0}: it exists and is not a regular file")]
     NotRegular(PathBuf),
+    /// The path is the input image.
     #[error("cannot write {0}: it is the input image")]
     IsInput(PathBuf),
+    /// Two outputs name one file.
     #[error("{0} is given to two outputs")]
     Twice(PathBuf),
+    /// Creating or writing failed.
     #[error("cannot write {path}: {source}")]
     Io {
+        /// The output.
         path: PathBuf,
+        /// What failed.
         source: std::io::Error,
     },
 }

@@ -8,11 +8,17 @@ use serde_json::json;
 
 /// The finished segmentation, ready to export.
 pub struct Outputs<'a> {
+    /// The contours.
     pub set: &'a ContourSet,
+    /// Image width, pixels.
     pub width: usize,
+    /// Image height, pixels.
     pub height: usize,
+    /// Frames run.
     pub frames: usize,
+    /// Whether the run converged.
     pub converged: bool,
+    /// The topology events with their frames.
     pub events: &'a [FrameEvent],
     /// The image's file name (recorded in the JSON and the CSV).
     pub image: &'a str,

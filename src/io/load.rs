@@ -15,31 +15,63 @@ use std::path::Path;
 /// Largest image accepted, in pixels (a 16k × 16k scan).
 pub const MAX_PIXELS: u64 = 1 << 28;
 
+/// Why an image cannot be opened.
 #[derive(Debug, thiserror::Error)]
 pub enum LoadError {
+    /// Reading failed.
     #[error("cannot read {path}: {source}")]
     Io {
+        /// The file.
         path: String,
+        /// What failed.
         source: std::io::Error,
     },
     #[error("{path} is not a readable PNG, JPEG or TIFF image: {reason}")]
-    Decode { path: String, reason: String },
+    /// The bytes are not an image this build decodes.
+    Decode {
+        /// The file.
+        path: String,
+        /// What the decoder said.
+        reason: String,
+    },
+    /// The image has no pixels.
     #[error("{path} has no pixels ({width}×{height})")]
     Empty {
+        /// The file.
         path: String,
+        /// Width.
         width: u32,
+        /// Height.
         height: u32,
     },
     #[error("{path} is not a regular file")]
-    NotAFile { path: String },
+    /// A FIFO, device, socket or folder.
+    NotAFile {
+        /// The path.
+        path: String,
+    },
     #[error("{path} is too large ({bytes} bytes; an image of at most {MAX_PIXELS} pixels needs at most {MAX_FILE_BYTES})")]
-    FileTooLarge { path: String, bytes: u64 },
+    /// The file is larger than any image of the allowed size.
+    FileTooLarge {
+        /// The file.
+        path: String,
+        /// Its size.
+        bytes: u64,
+    },
     #[error("{path} is truncated: the JPEG data ends before its end-of-image marker")]
-    Truncated { path: String },
+    /// A JPEG without its end.
+    Truncated {
+        /// The file.
+        path: String,
+    },
+    /// More pixels than allowed.
     #[error("{path} is too large ({width}×{height}; at most {MAX_PIXELS} pixels)")]
     TooLarge {
+        /// The file.
         path: String,
+        /// Width.
         width: u32,
+        /// Height.
         height: u32,
     },
 }

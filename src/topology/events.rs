@@ -13,21 +13,38 @@ use crate::contours::ContourId;
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum TopologyEvent {
     /// Outer ring `new` split off ring `from` (one more component).
-    Split { from: ContourId, new: ContourId },
+    Split {
+        /// The ring that split.
+        from: ContourId,
+        /// The new ring.
+        new: ContourId,
+    },
     /// Component bounded by `absorbed` joined the one bounded by `into`.
     Merge {
+        /// The component that remains.
         into: ContourId,
+        /// The one that joined it.
         absorbed: ContourId,
     },
     /// Hole ring `hole` appeared, split off ring `from` (one more hole).
-    HoleMade { from: ContourId, hole: ContourId },
+    HoleMade {
+        /// The ring the hole split off.
+        from: ContourId,
+        /// The hole.
+        hole: ContourId,
+    },
     /// Hole ring `hole` is gone: filled, or opened into `into`.
     HoleGone {
+        /// The hole.
         hole: ContourId,
+        /// The ring it opened into (none: filled).
         into: Option<ContourId>,
     },
     /// Outer ring `contour` shrank to nothing.
-    Vanished { contour: ContourId },
+    Vanished {
+        /// The ring.
+        contour: ContourId,
+    },
 }
 
 impl TopologyEvent {

@@ -2,7 +2,7 @@
 //!
 //! [`ContourSet::move_vertex`] moves one vertex and leaves the rings bounding exactly
 //! (R ∪ M⁺) − M⁻ (Theorem 3): find the crossings of the new portion c' with the rest of
-//! the boundary through the vertex bins ([`directive1::find_crossings`]), splice and
+//! the boundary through the vertex bins (`directive1::find_crossings`), splice and
 //! delete at them (Directive 1), delete rings inside the motion region (Directive 2), then
 //! relabel pseudo-locally and report [`TopologyEvent`]s.
 //!
@@ -39,16 +39,22 @@ pub use motion_region::MotionRegion;
 /// Why a move was refused (the set is unchanged).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum Degeneracy {
+    /// The new position coincides with a neighbour.
     #[error("the new position coincides with a neighbour")]
     OnNeighbour,
+    /// A new edge would touch the boundary.
     #[error("a new edge would touch the boundary")]
     Touch,
+    /// A new edge would overlap an edge collinearly.
     #[error("a new edge would overlap an edge collinearly")]
     Overlap,
+    /// The motion region is flat where a crossing lies.
     #[error("the motion region is flat where a crossing lies")]
     FlatRegion,
+    /// A crossing between nearly parallel edges.
     #[error("a crossing between nearly parallel edges")]
     NearlyParallel,
+    /// A crossing too close to other geometry.
     #[error("a crossing too close to other geometry")]
     Near,
 }
@@ -56,16 +62,22 @@ pub enum Degeneracy {
 /// Why a topology operation did nothing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum MoveError {
+    /// No such vertex.
     #[error("vertex {0} does not exist")]
     NoVertex(VertexId),
+    /// A coordinate is not finite.
     #[error("position is not finite")]
     NotFinite,
+    /// The motion is degenerate.
     #[error("degenerate motion: {0}")]
     Degenerate(#[from] Degeneracy),
+    /// A ring would have fewer than three vertices.
     #[error("a ring cannot have fewer than 3 vertices")]
     TooFewVertices,
+    /// An edge would exceed the edge bound.
     #[error("the resulting edge would exceed the edge bound")]
     EdgeTooLong,
+    /// A parameter along an edge is not in (0, 1).
     #[error("parameter along the edge must lie strictly between 0 and 1")]
     BadParameter,
 }

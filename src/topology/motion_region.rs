@@ -30,8 +30,11 @@ enum Bow {
 /// The quadrilateral (or triangle, for a removal) swept by one vertex move.
 #[derive(Clone, Copy, Debug)]
 pub struct MotionRegion {
+    /// The previous vertex.
     pub p: Point,
+    /// The old position of the moving vertex.
     pub o: Point,
+    /// The next vertex.
     pub n: Point,
     /// New position; `None` when the vertex is removed (c' = p→n).
     pub q: Option<Point>,
@@ -42,6 +45,7 @@ fn sign(v: f64) -> i8 {
 }
 
 impl MotionRegion {
+    /// The region of moving `o` to `q` (`None`: deleting `o`) between `p` and `n`.
     pub fn new(p: Point, o: Point, n: Point, q: Option<Point>) -> Self {
         MotionRegion { p, o, n, q }
     }
@@ -81,6 +85,7 @@ impl MotionRegion {
         }
     }
 
+    /// Its bounding box.
     pub fn bounds(&self) -> Aabb {
         let (pts, k) = self.loop_points();
         Aabb::of(&pts[..k])

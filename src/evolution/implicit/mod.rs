@@ -39,8 +39,8 @@
 //! per frame and the app can step the engine like the explicit ones. The run has
 //! converged when no pixel can still be reached.
 //!
-//! Files: [`fast_marching`] (the two fronts), [`simple_point`] (the topology test),
-//! [`cuts`] (contact lines between labels), [`marching_squares`] (contours), and here
+//! Files: `fast_marching` (the two fronts), `simple_point` (the topology test),
+//! `cuts` (contact lines between labels), `marching_squares` (contours), and here
 //! the state, its initialisation and [`ImplicitEngine`], the engine a run steps.
 
 mod cuts;
@@ -103,7 +103,9 @@ pub struct Implicit {
     /// Pixels conquered, pixels rejected (they would have changed topology), and edges
     /// cut between labels, so far.
     pub conquered: usize,
+    /// Pixels rejected so far (they would have changed topology).
     pub rejected: usize,
+    /// Grid edges cut between labels so far.
     pub cuts: usize,
 }
 
