@@ -98,7 +98,6 @@ pub struct ContourSet {
     pub(crate) mark: Vec<u32>,
     pub(crate) stamp: u32,
     pub(crate) scratch: Vec<u32>,
-    pub(crate) scratch_crossings: Vec<crate::topology::Crossing>,
 }
 
 impl ContourSet {
@@ -133,7 +132,6 @@ impl ContourSet {
             mark: Vec::new(),
             stamp: 0,
             scratch: Vec::new(),
-            scratch_crossings: Vec::new(),
         }
     }
 

@@ -30,7 +30,6 @@ mod quiet;
 
 use crate::contours::{ContourSet, Ring, VertexId, NIL};
 use crate::geometry::{edges_clash, folds_back, Aabb, Point};
-pub(crate) use directive1::Crossing;
 use directive1::{find_crossings, guard_crossings, NewEdge};
 pub use events::TopologyEvent;
 use events::{assign_ids, NewLoop, OldRing};
@@ -207,7 +206,9 @@ impl ContourSet {
         let mut cand = std::mem::take(&mut self.scratch);
         self.edges_near(&Aabb::of(&path[..k]), &mut cand);
 
-        let mut crossings = std::mem::take(&mut self.scratch_crossings);
+        // Crossings are rare (a topology event or a refused move): an empty Vec costs
+        // nothing until one is found.
+        let mut crossings = Vec::new();
         let mut found = find_crossings(self, &mr, new_edges, &cand, [pid, v], &mut crossings);
         if found.is_ok() && !crossings.is_empty() {
             found = guard_crossings(self, new_edges, &crossings, v, &mr);
@@ -216,7 +217,6 @@ impl ContourSet {
         }
         if let Err(e) = found {
             self.scratch = cand;
-            self.scratch_crossings = crossings;
             return Err(e.into());
         }
 
@@ -323,7 +323,6 @@ impl ContourSet {
             self.split_long_edges(&fresh_edges);
         }
         crossings.clear();
-        self.scratch_crossings = crossings;
         let survivor = moved
             .filter(|&v| self.is_alive(v))
             .map(|v| self.label[v as usize]);
