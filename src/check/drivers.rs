@@ -1,0 +1,140 @@
+//! Drivers: many random moves checked one by one (property tests), and fuzzer bytes
+//! decoded into moves (the fuzz target and the regression tests of its finds).
+
+use super::*;
+use crate::contours::BroadPhaseKind;
+use crate::geometry::{Aabb, Point};
+
+/// Runs `moves` random moves on a random ring set from `seed`, checking each one.
+/// Returns the number of topology events seen.
+pub fn run_random_moves(
+    seed: u64,
+    rings: usize,
+    moves: usize,
+    mix: MoveMix,
+) -> Result<u64, String> {
+    let mut rng = Rng(seed);
+    let mut set = random_rings_in(&mut rng, rings.max(1), 6.0, mix.broad);
+    let domain = set.domain();
+    let mut oracle = Oracle::new(&set, domain, 40);
+    let mut events = 0u64;
+    for step in 0..moves {
+        if set.vertex_count() < 12 || set.contour_count() == 0 {
+            let c = Point::new(rng.range(15.0, 85.0), rng.range(15.0, 85.0));
+            add_star(&mut set, &mut rng, c);
+            oracle.resync(&set);
+            if set.vertex_count() == 0 {
+                continue;
+            }
+        }
+        let v = loop {
+            let v = rng.below(set.vertex_capacity()) as u32;
+            if set.is_alive(v) {
+                break v;
+            }
+        };
+        let before = snapshot(&set);
+        let kinds = ring_kinds(&set);
+        let (p, o, n) = (
+            set.position(set.prev(v)),
+            set.position(v),
+            set.position(set.next(v)),
+        );
+        let remove = set.vertex_count() > 400 || rng.below(10) == 0;
+        let (q, result) = if remove {
+            (None, set.remove_vertex(v))
+        } else {
+            let q = draw_target(&set, v, &mut rng, mix);
+            // The broad phase must offer every edge that brute force finds near the move.
+            let b = Aabb::of(&[p, q, n]);
+            let mut near = Vec::new();
+            set.edges_near(&b, &mut near);
+            for w in set.vertices() {
+                if segment_meets_box(set.position(w), set.position(set.next(w)), &b)
+                    && !near.contains(&w)
+                {
+                    return Err(format!(
+                        "seed {seed} step {step}: broad phase missed edge {w}"
+                    ));
+                }
+            }
+            (Some(q), set.move_vertex(v, q))
+        };
+        if let Ok(ev) = &result {
+            events += ev.len() as u64;
+        }
+        oracle
+            .check_move(&set, &before, kinds, (p, o, n, q), &result, &mut rng)
+            .map_err(|e| format!("seed {seed} step {step}: move of {v} from {o:?} to {q:?} (p {p:?}, n {n:?}): {e}"))?;
+    }
+    Ok(events)
+}
+
+/// Decodes fuzzer bytes into a ring set and a sequence of moves and removals, checking
+/// every step like the property test. Input: 2 bytes of set-up, then 6 bytes per step
+/// (vertex, kind, dx, dy, fraction). Used by `fuzz/` and by the regression tests of its
+/// finds.
+pub fn run_fuzz_bytes(data: &[u8]) -> Result<(), String> {
+    if data.len() < 2 {
+        return Ok(());
+    }
+    let mut rng = Rng(data[0] as u64);
+    // The top bit of the second byte picks the broad phase.
+    let broad = if data[1] & 0x80 != 0 {
+        BroadPhaseKind::Hash
+    } else {
+        BroadPhaseKind::Bins
+    };
+    let mut set = random_rings_in(&mut rng, 1 + ((data[1] & 0x7f) % 6) as usize, 6.0, broad);
+    let domain = set.domain();
+    let mut oracle = Oracle::new(&set, domain, 24);
+    for step in data[2..].chunks_exact(6) {
+        if set.vertex_count() == 0 {
+            return Ok(());
+        }
+        let alive: Vec<u32> = set.vertices().collect();
+        let v = alive[u16::from_le_bytes([step[0], step[1]]) as usize % alive.len()];
+        let (p, o, n) = (
+            set.position(set.prev(v)),
+            set.position(v),
+            set.position(set.next(v)),
+        );
+        let before = snapshot(&set);
+        let kinds = ring_kinds(&set);
+        let (dx, dy) = ((step[3] as i8) as f64, (step[4] as i8) as f64);
+        let frac = step[5] as f64 / 255.0;
+        let (q, result) = match step[2] % 8 {
+            0 => (None, set.remove_vertex(v)),
+            // Onto another vertex, or onto a point of another edge: exact degeneracies.
+            1 => {
+                let w = alive[(step[3] as usize * 256 + step[4] as usize) % alive.len()];
+                let q = set.position(w);
+                (Some(q), set.move_vertex(v, q))
+            }
+            2 => {
+                let w = alive[(step[3] as usize) % alive.len()];
+                let q = set.position(w).lerp(set.position(set.next(w)), frac);
+                (Some(q), set.move_vertex(v, q))
+            }
+            // On the integer lattice.
+            3 => {
+                let q = Point::new((o.x + dx / 8.0).round(), (o.y + dy / 8.0).round());
+                (Some(q), set.move_vertex(v, q))
+            }
+            // Small and large displacements.
+            4..=6 => {
+                let s = [1.0 / 32.0, 1.0 / 8.0, 0.5][(step[2] % 8 - 4) as usize];
+                let q = o + Point::new(dx * s, dy * s);
+                (Some(q), set.move_vertex(v, q))
+            }
+            _ => {
+                let q = n.lerp(p, frac * 2.0 - 0.5) + Point::new(dx / 64.0, dy / 64.0);
+                (Some(q), set.move_vertex(v, q))
+            }
+        };
+        oracle
+            .check_move(&set, &before, kinds, (p, o, n, q), &result, &mut rng)
+            .map_err(|e| format!("move of {v} from {o:?} to {q:?} (p {p:?}, n {n:?}): {e}"))?;
+    }
+    Ok(())
+}
