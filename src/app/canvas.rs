@@ -323,11 +323,12 @@ fn motion_layer(app: &TopoApp, painter: &egui::Painter, view: View) {
             break;
         };
         let color = Color32::from_rgba_unmultiplied(255, 40, 200, 255 - back as u8 * 40);
-        for q in &old.motions {
-            let pts: Vec<Pos2> = q.iter().map(|&p| view.to_screen(p)).collect();
+        for m in &old.motions {
+            let (corners, k) = m.loop_points();
+            let pts: Vec<Pos2> = corners[..k].iter().map(|&p| view.to_screen(p)).collect();
             painter.add(egui::Shape::closed_line(pts, Stroke::new(2.5, color)));
             painter.circle_stroke(
-                view.to_screen(q[3]),
+                view.to_screen(m.q.unwrap_or(m.o)),
                 10.0 - back as f32,
                 Stroke::new(2.0, color),
             );

@@ -117,20 +117,8 @@ impl TopoApp {
         };
         run.rewind(self.shown.min(run.history.len() - 1));
         let ev = &run.evolver;
-        let (w, h) = ev.size();
-        let mut set = ev.contours().clone();
-        crate::evolution::measure::drop_small(&mut set, self.settings.min_area);
-        let out = Outputs {
-            set: &set,
-            width: w,
-            height: h,
-            frames: ev.frames(),
-            converged: ev.is_converged(),
-            events: ev.events(),
-            image: &self.image_name,
-            params: ev.params(),
-            held: ev.held_contacts(),
-        };
+        let set = ev.filtered_contours();
+        let out = Outputs::of(ev, &set, &self.image_name);
         let bytes = match kind {
             ExportKind::Svg => out.svg().into_bytes(),
             ExportKind::GeoJson => out.geojson().into_bytes(),

@@ -3,7 +3,7 @@
 
 use crate::evolution::Evolver;
 use crate::geometry::Point;
-use crate::topology::TopologyEvent;
+use crate::topology::{MotionRegion, TopologyEvent};
 
 /// One ring as recorded for display.
 #[derive(Clone, Debug)]
@@ -26,7 +26,7 @@ pub struct FrameRecord {
     /// The frame's topology events.
     pub events: Vec<TopologyEvent>,
     /// The motion regions (p, o, n, q) that caused them.
-    pub motions: Vec<[Point; 4]>,
+    pub motions: Vec<MotionRegion>,
     /// Area of the region, square pixels.
     pub area: f64,
     /// Contours.
@@ -44,7 +44,7 @@ impl FrameRecord {
         ev: &Evolver,
         index: usize,
         events: Vec<TopologyEvent>,
-        motions: Vec<[Point; 4]>,
+        motions: Vec<MotionRegion>,
         energy: f64,
         converged: bool,
     ) -> Self {

@@ -9,7 +9,7 @@
 //! regular files ending in .png, .jpg, .jpeg, .tif or .tiff (not its subfolders), in
 //! name order.
 
-use super::run::{evolve, file_name, outputs, RunSettings};
+use super::run::{evolve, file_name, RunSettings};
 use super::segment::write_outputs;
 use super::{bad, note, Failure, Format};
 use crate::evolution::regions;
@@ -161,7 +161,7 @@ fn one_image(img: &Path, a: &BatchArgs) -> ImageResult {
     let files = OutputFiles::prepare(Some(img), &refs).map_err(|e| bad(e.to_string()))?;
     let (ev, image, _) = evolve(img, &a.run)?;
     let name = file_name(img);
-    let out = outputs(&ev, image.width, image.height, &name);
+    let out = Outputs::of(&ev, ev.contours(), &name);
     let wanted: Vec<(Format, &Path)> = a.formats.iter().copied().zip(refs).collect();
     write_outputs(files, &wanted, &out, &image, None)?;
     Ok(summary_rows(&stem, &out, &image))

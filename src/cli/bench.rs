@@ -1,9 +1,10 @@
 //! `topocontour bench CASES…`: the whole pipeline timed in-process on case folders.
 
-use super::run::{evolve, outputs};
+use super::run::evolve;
 use super::{bad, Failure, SegmentArgs};
 use crate::contours::BroadPhaseKind;
 use crate::evolution::Mode;
+use crate::io::Outputs;
 use clap::Args;
 use std::io::Write;
 use std::path::PathBuf;
@@ -61,8 +62,8 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
         let (mut frames, mut contours) = (0, 0);
         for _ in 0..b.runs.max(1) {
             let t = std::time::Instant::now();
-            let (ev, image, _) = evolve(&args.image, &args.run)?;
-            let out = outputs(&ev, image.width, image.height, "");
+            let (ev, _, _) = evolve(&args.image, &args.run)?;
+            let out = Outputs::of(&ev, ev.contours(), "");
             std::hint::black_box((out.json(), out.mask_png()));
             times.push(t.elapsed().as_secs_f64() * 1e3);
             frames = ev.frames();

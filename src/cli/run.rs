@@ -5,7 +5,7 @@ use super::{bad, Failure};
 use crate::contours::BroadPhaseKind;
 use crate::evolution::{find_seeds, Evolver, Field, Modality, Mode, Params, Polarity, Shape};
 use crate::geometry::Point;
-use crate::io::{load_image, Outputs};
+use crate::io::load_image;
 use clap::Args;
 use std::path::Path;
 
@@ -211,26 +211,6 @@ pub(super) fn evolve(
     ev.run();
     ev.filter_clutter();
     Ok((ev, image, shapes))
-}
-
-/// The finished run of the image `name` (a file name), ready to export.
-pub(super) fn outputs<'a>(
-    ev: &'a Evolver,
-    width: usize,
-    height: usize,
-    name: &'a str,
-) -> Outputs<'a> {
-    Outputs {
-        set: ev.contours(),
-        width,
-        height,
-        frames: ev.frames(),
-        converged: ev.is_converged(),
-        events: ev.events(),
-        image: name,
-        params: ev.params(),
-        held: ev.held_contacts(),
-    }
 }
 
 /// The file name of `path` (what outputs record of the image).

@@ -1,7 +1,7 @@
 //! `topocontour segment IMAGE …`: one image, the outputs the flags name, all written or
 //! none; and the evaluation case folders' `case.json`.
 
-use super::run::{evolve, file_name, outputs, RunSettings};
+use super::run::{evolve, file_name, RunSettings};
 use super::{bad, note, Failure};
 use crate::evolution::{Evolver, Modality, Polarity};
 use crate::io::session::Session;
@@ -166,7 +166,7 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
     let files = OutputFiles::prepare(Some(&a.image), &paths).map_err(|e| bad(e.to_string()))?;
     let (ev, image, shapes) = evolve(&a.image, &a.run)?;
     let name = file_name(&a.image);
-    let out = outputs(&ev, image.width, image.height, &name);
+    let out = Outputs::of(&ev, ev.contours(), &name);
     if out.held > 0 {
         // The user asked for fixed topology; say where it mattered.
         note(&format!(
@@ -217,7 +217,7 @@ pub fn replay(a: &ReplayArgs) -> Result<Evolver, Failure> {
     let (mut ev, image) = session.replay(&a.session).map_err(|e| bad(e.to_string()))?;
     ev.filter_clutter();
     let name = file_name(&image_path);
-    let out = outputs(&ev, image.width, image.height, &name);
+    let out = Outputs::of(&ev, ev.contours(), &name);
     write_outputs(files, &wanted, &out, &image, None)?;
     Ok(ev)
 }

@@ -13,8 +13,7 @@
 use super::explicit::{Adaptive, Explicit, Preserve};
 use super::implicit::ImplicitEngine;
 use crate::contours::ContourSet;
-use crate::geometry::Point;
-use crate::topology::TopologyEvent;
+use crate::topology::{MotionRegion, TopologyEvent};
 
 /// What one frame did.
 #[derive(Clone, Debug, PartialEq)]
@@ -40,8 +39,8 @@ pub struct Frame {
     pub active_share: f64,
     /// The run reached its equilibrium with this frame.
     pub converged: bool,
-    /// The motion regions (p, o, n, q) of the moves that caused this frame's events.
-    pub motions: Vec<[Point; 4]>,
+    /// The motion regions of the moves that caused this frame's events.
+    pub motions: Vec<MotionRegion>,
 }
 
 /// An engine: advances contours one frame at a time.

@@ -250,6 +250,14 @@ impl Evolver {
     pub fn filter_clutter(&mut self) {
         super::measure::drop_small(self.engine.contours_mut(), self.params.min_area);
     }
+
+    /// The contours as [`Evolver::filter_clutter`] would leave them, the run untouched
+    /// (the app exports a frame and plays on).
+    pub fn filtered_contours(&self) -> ContourSet {
+        let mut set = self.contours().clone();
+        super::measure::drop_small(&mut set, self.params.min_area);
+        set
+    }
 }
 
 /// Per pyramid level, the local decision level of the region term (empty: the global

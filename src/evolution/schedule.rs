@@ -63,8 +63,8 @@ impl Schedule {
         }
         self.areas.push(now);
         let scale = super::Pyramid::scale(self.level);
-        let quiet = share < converged_share && self.steady(0.002, scale);
-        self.calm = if quiet { self.calm + 1 } else { 0 };
+        let settling = share < converged_share && self.steady(0.002, scale);
+        self.calm = if settling { self.calm + 1 } else { 0 };
         let stall_tol = if self.level > 0 { 0.01 } else { 0.003 };
         let stalled = self.level_frames >= STALL_FRAMES && self.steady(stall_tol, scale);
         let capped = self.level_frames >= LEVEL_FRAMES_CAP;

@@ -2,7 +2,7 @@
 //! bytes in memory; [`super::atomic`] writes them.
 
 use crate::contours::{ContourId, ContourSet};
-use crate::evolution::{regions, FrameEvent};
+use crate::evolution::{regions, Evolver, FrameEvent};
 use crate::geometry::Point;
 use serde_json::json;
 
@@ -26,6 +26,25 @@ pub struct Outputs<'a> {
     pub params: &'a crate::evolution::Params,
     /// Places where a topology-keeping engine held fronts apart (0 when adaptive).
     pub held: usize,
+}
+
+impl<'a> Outputs<'a> {
+    /// The run of `ev` on the image `name` (a file name), with the contours `set` (the
+    /// evolver's, or a filtered copy): the one place both the CLI and the app build it.
+    pub fn of(ev: &'a Evolver, set: &'a ContourSet, name: &'a str) -> Self {
+        let (width, height) = ev.size();
+        Outputs {
+            set,
+            width,
+            height,
+            frames: ev.frames(),
+            converged: ev.is_converged(),
+            events: ev.events(),
+            image: name,
+            params: ev.params(),
+            held: ev.held_contacts(),
+        }
+    }
 }
 
 fn fmt(v: f64) -> String {

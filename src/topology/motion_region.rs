@@ -28,7 +28,7 @@ enum Bow {
 }
 
 /// The quadrilateral (or triangle, for a removal) swept by one vertex move.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MotionRegion {
     /// The previous vertex.
     pub p: Point,

@@ -31,7 +31,7 @@ use super::local::Decision;
 use super::remesh::remesh;
 use crate::contours::ContourSet;
 use crate::geometry::{Aabb, Point};
-use crate::topology::TopologyEvent;
+use crate::topology::{MotionRegion, TopologyEvent};
 use std::sync::Arc;
 
 /// Smallest share of the step a vertex whose force keeps turning round still takes.
@@ -99,7 +99,7 @@ impl<M: Motion> Explicit<M> {
         level: usize,
         near: &mut Vec<u32>,
         events: &mut Vec<TopologyEvent>,
-        motions: &mut Vec<[Point; 4]>,
+        motions: &mut Vec<MotionRegion>,
     ) -> (f64, f64) {
         let scale = Pyramid::scale(level);
         let field = &self.pyramid.levels[level];
@@ -140,7 +140,7 @@ impl<M: Motion> Explicit<M> {
         let to = self.bounds.clamp(x + d);
         let moved = M::advance(&mut self.set, v, to, scale, events);
         if events.len() > before {
-            motions.push([pp, x, pn, to]);
+            motions.push(MotionRegion::new(pp, x, pn, Some(to)));
         }
         (moved, f.region.abs())
     }
@@ -169,8 +169,8 @@ impl<M: Motion> Engine for Explicit<M> {
                 continue;
             }
             let (p, n) = (self.set.prev(v), self.set.next(v));
-            let quiet = |u: u32| self.still.get(u as usize).is_some_and(|&s| s >= 3);
-            if !revisit_all && quiet(v) && quiet(p) && quiet(n) {
+            let resting = |u: u32| self.still.get(u as usize).is_some_and(|&s| s >= 3);
+            if !revisit_all && resting(v) && resting(p) && resting(n) {
                 continue;
             }
             visited += 1;
