@@ -580,3 +580,106 @@ fn hand_edits_merge_and_split_exactly() {
         .sanity_check()
         .unwrap();
 }
+
+/// A change of forces goes on from the frame on screen: the frames before it stay, the
+/// run is not thrown away, and Undo puts the old forces and frames back.
+#[test]
+fn a_force_change_continues_from_the_frame_on_screen() {
+    let mut app = TopoApp::with_sample();
+    app.send(Command::Step(20));
+    let mut h = harness(app);
+    h.step();
+    let at = h.state().shown;
+    assert_eq!(at, 20);
+    let before = h.state().run.as_ref().unwrap().history[at].rings.len();
+    let mut weights = h.state().settings.weights;
+    weights.stretch = 0.6;
+    h.state_mut()
+        .send(Command::SetForces { weights, step: 0.5 });
+    h.state_mut().send(Command::Step(5));
+    h.step();
+    let app = h.state();
+    let run = app.run.as_ref().expect("the run goes on");
+    assert_eq!(app.shown, at + 5, "continued from frame {at}");
+    assert_eq!(
+        run.history[at].rings.len(),
+        before,
+        "frames up to the change kept"
+    );
+    assert_eq!(run.evolver.params().weights.stretch, 0.6);
+    assert_eq!(run.evolver.params().step, 0.5);
+    assert!(matches!(
+        run.evolver.edits(),
+        [topocontour::evolution::Edit::Forces { frame: 20, .. }]
+    ));
+    assert!(app.notice.as_deref().unwrap_or("").contains("frame 20"));
+    h.state_mut().send(Command::Undo);
+    h.step();
+    let app = h.state();
+    assert_eq!(app.settings.weights.stretch, 0.2, "old forces back");
+    assert!(app.run.as_ref().unwrap().evolver.edits().is_empty());
+    assert_eq!(app.shown, at);
+}
+
+/// A session keeps the edits made on the way (a force change and a hand drag, each at
+/// its frame): opening it rebuilds the same contours.
+#[test]
+fn a_session_replays_hand_edits_and_force_changes() {
+    use topocontour::Point;
+    let mut app = bright_bridge_with_seeds(&[(40.0, 64.0, 10.0), (75.0, 64.0, 10.0)]);
+    app.send(Command::Step(3));
+    let mut h = harness(app);
+    h.step();
+    let v = vertex_near(h.state(), Point::new(52.0, 64.0));
+    for k in 1..=4 {
+        h.state_mut().send(Command::HandMove {
+            vertex: v,
+            to: Point::new(52.0 + 4.0 * k as f64, 64.0),
+        });
+        h.step();
+    }
+    let mut weights = h.state().settings.weights;
+    weights.bend = 0.2;
+    h.state_mut().send(Command::SetForces {
+        weights,
+        step: 0.75,
+    });
+    h.state_mut().send(Command::Step(4));
+    h.step();
+    let path = std::env::temp_dir().join(format!(
+        "topocontour-app-edits-{}.session.json",
+        std::process::id()
+    ));
+    h.state_mut().send(Command::SaveSession(path.clone()));
+    h.step();
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    let points = |a: &TopoApp| {
+        let set = a.run.as_ref().unwrap().evolver.contours();
+        set.contour_ids()
+            .map(|id| set.ring_points(id))
+            .collect::<Vec<_>>()
+    };
+    let want = points(h.state());
+    assert!(h.state().run.as_ref().unwrap().evolver.edits().len() >= 2);
+    let mut other = harness(TopoApp::default());
+    other.step();
+    other.state_mut().send(Command::OpenSession(path.clone()));
+    other.step();
+    assert!(other.state().error.is_none(), "{:?}", other.state().error);
+    assert_eq!(other.state().shown, h.state().shown);
+    assert_eq!(
+        points(other.state()),
+        want,
+        "same contours, vertex for vertex"
+    );
+    assert_eq!(other.state().settings.weights.bend, 0.2);
+    // Headless, the same session gives the same contours.
+    let (ev, _) = topocontour::io::session::Session::read(&path)
+        .unwrap()
+        .replay(&path)
+        .unwrap();
+    let set = ev.contours();
+    let headless: Vec<_> = set.contour_ids().map(|id| set.ring_points(id)).collect();
+    assert_eq!(headless, want);
+    let _ = std::fs::remove_file(path);
+}

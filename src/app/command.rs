@@ -3,7 +3,7 @@
 
 use super::{auto_contrast, Settings, TopoApp};
 use crate::contours::BroadPhaseKind;
-use crate::evolution::{find_seeds, Modality, Mode, Polarity, Shape};
+use crate::evolution::{find_seeds, ForceWeights, Modality, Mode, Polarity, Shape};
 use crate::geometry::Point;
 use crate::io::load_image;
 use std::path::{Path, PathBuf};
@@ -107,6 +107,13 @@ pub enum Command {
     SetBroadPhase(BroadPhaseKind),
     /// Run a second engine beside the first, on the same image and shapes (or stop).
     SetCompare(Option<Mode>),
+    /// New force weights and step: a run goes on from the frame on screen with them.
+    SetForces {
+        /// The weights.
+        weights: ForceWeights,
+        /// The step, in grid spacings.
+        step: f64,
+    },
     /// Put the force weights, step and minimum area back to their defaults.
     ResetParameters,
     /// Save the image reference, shapes, parameters and the frame on screen as a session.
@@ -142,6 +149,33 @@ pub enum Command {
 }
 
 impl TopoApp {
+    /// New forces for the runs on screen: each goes on from the frame shown (later frames
+    /// are dropped; the change is one of the run's edits, saved with a session).
+    fn set_forces(&mut self, weights: ForceWeights, step: f64) {
+        self.settings.weights = weights;
+        self.settings.step = step;
+        let shown = self.shown;
+        let mut failed = None;
+        for run in [self.run.as_mut(), self.run_b.as_mut()]
+            .into_iter()
+            .flatten()
+        {
+            let at = shown.min(run.history.len() - 1);
+            run.edit_at(at, |ev| {
+                failed = ev.set_forces(weights, step).err();
+                Vec::new()
+            });
+        }
+        if let Some(e) = failed {
+            self.error = Some(e.into());
+        } else if self.run.is_some() {
+            self.log.retain(|(f, _)| *f <= shown);
+            self.notice = Some(format!(
+                "forces changed at frame {shown}: the run goes on from here with them"
+            ));
+        }
+    }
+
     /// The one place the document changes: records an undo step when the command starts
     /// one, then hands the command to its group's handler.
     pub(super) fn apply_now(&mut self, c: Command) {
@@ -173,6 +207,7 @@ impl TopoApp {
             | Command::SetMode(..)
             | Command::SetCompare(..)
             | Command::SetBroadPhase(..)
+            | Command::SetForces { .. }
             | Command::ResetParameters => self.set_parameter(c),
             Command::OpenImage(..)
             | Command::OpenDialog
@@ -361,15 +396,14 @@ impl TopoApp {
                 self.settings.broad_phase = kind;
                 self.reset_run();
             }
+            Command::SetForces { weights, step } => self.set_forces(weights, step),
             Command::ResetParameters => {
                 if let Some(img) = &self.image {
                     self.settings.contrast = auto_contrast(img);
                 }
                 let d = Settings::default();
-                self.settings.weights = d.weights;
-                self.settings.step = d.step;
                 self.settings.min_area = d.min_area;
-                self.reset_run();
+                self.set_forces(d.weights, d.step);
             }
             _ => unreachable!("not a set parameter command: {c:?}"),
         }

@@ -56,25 +56,34 @@ impl TopoApp {
             path: image_path.clone(),
             source,
         })?;
-        let (frames, finished) = match &self.run {
-            Some(run) => (
-                self.shown,
-                self.shown == run.head() && run.evolver.is_finished(),
-            ),
-            None => (0, false),
+        let shown = self.shown;
+        let (frames, finished, params, edits) = match self.run.as_mut() {
+            Some(run) => {
+                // The evolver at the frame on screen: its edits are the ones that led here.
+                run.rewind(shown.min(run.history.len() - 1));
+                let ev = &run.evolver;
+                (
+                    ev.frames(),
+                    ev.is_finished(),
+                    ev.start_params().clone(),
+                    ev.edits().to_vec(),
+                )
+            }
+            None => (0, false, self.params(), Vec::new()),
         };
         let s = crate::io::session::Session::new(
             &abs,
             image,
             self.shapes.clone(),
-            self.params(),
+            params,
             frames,
             finished,
         )
         .map_err(|source| AppError::Io {
             path: abs.clone(),
             source,
-        })?;
+        })?
+        .with_edits(&edits);
         OutputFiles::prepare(Some(&abs), &[path])?.commit(vec![s.to_json().into_bytes()])?;
         Ok(())
     }
@@ -104,8 +113,33 @@ impl TopoApp {
         self.settings.min_area = p.min_area;
         self.shapes = s.shapes.clone();
         self.reset_run();
-        if s.frames > 0 {
-            self.step_frames(s.frames);
+        if !self.ensure_run() {
+            return Err(self.error.take().unwrap_or(AppError::NoImage));
+        }
+        // The edits at their frames, then on to where the session was.
+        for edit in &s.edits {
+            if edit.frame() > self.shown {
+                self.step_frames(edit.frame() - self.shown);
+            }
+            let at = self.shown;
+            let run = self.run.as_mut().expect("ensured");
+            let mut failed = None;
+            let events = run.edit_at(at, |ev| {
+                let before = ev.events().len();
+                failed = ev.redo_edit(edit).err();
+                ev.events()[before..].iter().map(|e| e.event).collect()
+            });
+            if let Some(e) = failed {
+                return Err(e.into());
+            }
+            self.log.extend(events.into_iter().map(|e| (at, e)));
+            if let crate::evolution::Edit::Forces { weights, step, .. } = *edit {
+                self.settings.weights = weights;
+                self.settings.step = step;
+            }
+        }
+        if s.frames > self.shown {
+            self.step_frames(s.frames - self.shown);
         }
         Ok(())
     }
@@ -117,7 +151,7 @@ impl TopoApp {
         };
         run.rewind(self.shown.min(run.history.len() - 1));
         let ev = &run.evolver;
-        let set = ev.filtered_contours();
+        let set = ev.filtered_contours(self.settings.min_area);
         let out = Outputs::of(ev, &set, &self.image_name);
         let bytes = match kind {
             ExportKind::Svg => out.svg().into_bytes(),

@@ -58,6 +58,7 @@ impl History {
                 | Command::SetCompare(_)
                 | Command::Reset
                 | Command::ResetParameters
+                | Command::SetForces { .. }
                 | Command::HandMove { .. }
                 | Command::DeleteContour(_)
         )
@@ -73,6 +74,8 @@ impl History {
         let dragging = match c {
             Command::MoveShape { index, .. } => Some((false, *index)),
             Command::HandMove { vertex, .. } => Some((true, *vertex as usize)),
+            // A slider drag is one step too.
+            Command::SetForces { .. } => Some((true, usize::MAX)),
             _ => None,
         };
         if dragging.is_some() && self.moving == dragging {

@@ -6,183 +6,263 @@ use crate::contours::BroadPhaseKind;
 use crate::evolution::{Modality, Polarity};
 use egui_plot::{Legend, Line, Plot, PlotPoints};
 
+/// The tool bar: files, tools, the image and engine, then playback on its own row.
 pub fn top_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
     egui::Panel::top("toolbar").show(ui, |ui| {
         ui.horizontal_wrapped(|ui| {
-            if ui.button("Open…").clicked() {
-                app.send(Command::OpenDialog);
-            }
-            let (can_undo, can_redo) = app.can_undo_redo();
-            if ui
-                .add_enabled(can_undo, egui::Button::new("Undo"))
-                .on_hover_text("undo the last change of shapes, parameters or image (Ctrl+Z); a reset run comes back at its frame")
-                .clicked()
-            {
-                app.send(Command::Undo);
-            }
-            if ui
-                .add_enabled(can_redo, egui::Button::new("Redo"))
-                .on_hover_text("redo what Undo undid (Ctrl+Shift+Z or Ctrl+Y)")
-                .clicked()
-            {
-                app.send(Command::Redo);
-            }
-            ui.menu_button("Session", |ui| {
-                if ui
-                    .button("Save session…")
-                    .on_hover_text("the image, shapes, parameters and frame, to reopen here or replay headless (topocontour replay)")
-                    .clicked()
-                {
-                    app.send(Command::SessionDialog(true));
-                    ui.close();
-                }
-                if ui.button("Open session…").clicked() {
-                    app.send(Command::SessionDialog(false));
-                    ui.close();
-                }
-            });
-            ui.menu_button("Export", |ui| {
-                for (label, kind) in [
-                    ("SVG…", ExportKind::Svg),
-                    ("GeoJSON…", ExportKind::GeoJson),
-                    ("Mask PNG…", ExportKind::Mask),
-                    ("Measurements CSV…", ExportKind::Csv),
-                    ("Label image TIFF…", ExportKind::Labels),
-                    ("ImageJ ROIs (Fiji)…", ExportKind::Roi),
-                ] {
-                    if ui.button(label).clicked() {
-                        app.send(Command::ExportDialog(kind));
-                        ui.close();
-                    }
-                }
-            });
+            files_ui(app, ui);
             ui.separator();
-            for (label, tool) in [
-                ("Seed", Tool::Seed),
-                ("Rectangle", Tool::Rect),
-                ("Polygon", Tool::Polygon),
-                ("Select", Tool::Select),
-                ("Edit", Tool::Edit),
-            ] {
-                if ui
-                    .selectable_label(app.settings.tool == tool, label)
-                    .clicked()
-                {
-                    app.send(Command::SetTool(tool));
-                }
-            }
-            if ui.button("Wrap border").clicked() {
-                app.send(Command::WrapBorder(6.0));
-            }
-            if ui
-                .button("Find seeds")
-                .on_hover_text("one seed per object, found in the image (distance-transform maxima of the local threshold); move, delete or add seeds before you play")
-                .clicked()
-            {
-                app.send(Command::FindSeeds);
-            }
-            let selected = app.selected;
-            if ui
-                .add_enabled(selected.is_some(), egui::Button::new("Delete shape"))
-                .clicked()
-            {
-                if let Some(i) = selected {
-                    app.send(Command::DeleteShape(i));
-                }
-            }
+            tools_ui(app, ui);
             ui.separator();
-            let polarity = app.settings.polarity;
-            for (label, p) in [
-                ("Dark objects", Polarity::Dark),
-                ("Bright objects", Polarity::Bright),
-            ] {
-                if ui.selectable_label(polarity == p, label).clicked() && polarity != p {
-                    app.send(Command::SetPolarity(p));
-                }
-            }
-            let modality = app.settings.modality;
-            egui::ComboBox::from_id_salt("modality")
-                .selected_text(format!("image: {}", modality.name()))
-                .show_ui(ui, |ui| {
-                    for m in [
-                        Modality::Generic,
-                        Modality::Fluorescence,
-                        Modality::PhaseContrast,
-                        Modality::Brightfield,
-                    ] {
-                        if ui.selectable_label(modality == m, m.name()).clicked() && modality != m {
-                            app.send(Command::SetModality(m));
-                        }
-                    }
-                })
-                .response
-                .on_hover_text("the kind of image: fluorescence finds dim objects beside bright ones; phase contrast treats the bright halo around cells as background");
-            let mode = app.settings.mode;
-            for (label, m) in [
-                ("Adaptive", crate::evolution::Mode::Adaptive),
-                ("Preserve", crate::evolution::Mode::Preserve),
-                ("Implicit", crate::evolution::Mode::Implicit),
-            ] {
-                if ui
-                    .selectable_label(mode == m, label)
-                    .on_hover_text("engine: adaptive topology; or keep the initial topology (preserve: explicit with a gap; implicit: fast marching with sub-pixel contact lines)")
-                    .clicked()
-                    && mode != m
-                {
-                    app.send(Command::SetMode(m));
-                }
-            }
-            let compare = app.settings.compare;
-            let name = |m: Option<crate::evolution::Mode>| m.map_or("none", |m| m.name());
-            egui::ComboBox::from_id_salt("compare")
-                .selected_text(format!("beside: {}", name(compare)))
-                .show_ui(ui, |ui| {
-                    for m in [
-                        None,
-                        Some(crate::evolution::Mode::Adaptive),
-                        Some(crate::evolution::Mode::Preserve),
-                        Some(crate::evolution::Mode::Implicit),
-                    ] {
-                        if ui.selectable_label(compare == m, name(m)).clicked() && compare != m {
-                            app.send(Command::SetCompare(m));
-                        }
-                    }
-                })
-                .response
-                .on_hover_text("run a second engine side by side on the same image and shapes");
+            image_ui(app, ui);
+            engine_ui(app, ui);
         });
         // Playback on its own row, so its buttons stay put whatever the first row holds.
-        ui.horizontal_wrapped(|ui| {
-            if app.playing {
-                if ui.button("Pause").clicked() {
-                    app.send(Command::Pause);
-                }
-            } else if ui.button("Play").clicked() {
-                app.send(Command::Play);
-            }
-            if ui.button("Step").clicked() {
-                app.send(Command::Step(1));
-            }
-            if ui.button("Step 10").clicked() {
-                app.send(Command::Step(10));
-            }
-            if ui
-                .button("Next event")
-                .on_hover_text("Step until a topology event (key E)")
-                .clicked()
-            {
-                app.send(Command::StepToEvent);
-            }
-            if ui.button("Reset").clicked() {
-                app.send(Command::Reset);
-            }
-            ui.add(
-                egui::Slider::new(&mut app.settings.speed, 1.0..=240.0)
-                    .logarithmic(true)
-                    .text("frames/s"),
-            );
-        });
+        ui.horizontal_wrapped(|ui| playback_ui(app, ui));
     });
+}
+
+/// A button with a tooltip that sends `command` when clicked.
+fn command_button(app: &mut TopoApp, ui: &mut egui::Ui, label: &str, tip: &str, command: Command) {
+    if ui.button(label).on_hover_text(tip).clicked() {
+        app.send(command);
+    }
+}
+
+/// Open, undo and redo, the Session and Export menus.
+fn files_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
+    command_button(
+        app,
+        ui,
+        "Open…",
+        "open a PNG, JPEG or TIFF image (8 or 16 bit)",
+        Command::OpenDialog,
+    );
+    let (can_undo, can_redo) = app.can_undo_redo();
+    if ui
+        .add_enabled(can_undo, egui::Button::new("Undo"))
+        .on_hover_text("undo the last change of shapes, parameters, image or contours (Ctrl+Z); a reset run comes back at its frame")
+        .clicked()
+    {
+        app.send(Command::Undo);
+    }
+    if ui
+        .add_enabled(can_redo, egui::Button::new("Redo"))
+        .on_hover_text("redo what Undo undid (Ctrl+Shift+Z or Ctrl+Y)")
+        .clicked()
+    {
+        app.send(Command::Redo);
+    }
+    ui.menu_button("Session", |ui| {
+        if ui
+            .button("Save session…")
+            .on_hover_text("the image, shapes, parameters and frame, to reopen here or replay headless (topocontour replay)")
+            .clicked()
+        {
+            app.send(Command::SessionDialog(true));
+            ui.close();
+        }
+        if ui
+            .button("Open session…")
+            .on_hover_text("reopen a saved session: its image, shapes and parameters, run to its frame")
+            .clicked()
+        {
+            app.send(Command::SessionDialog(false));
+            ui.close();
+        }
+    })
+    .response
+    .on_hover_text("save or reopen the whole state of a segmentation");
+    ui.menu_button("Export", |ui| {
+        for (label, kind, tip) in [
+            ("SVG…", ExportKind::Svg, "the contours as vector graphics"),
+            (
+                "GeoJSON…",
+                ExportKind::GeoJson,
+                "objects with measurements, as QuPath imports them",
+            ),
+            (
+                "Mask PNG…",
+                ExportKind::Mask,
+                "white inside the region, black outside",
+            ),
+            (
+                "Measurements CSV…",
+                ExportKind::Csv,
+                "one row per object: area, perimeter, circularity, centroid",
+            ),
+            (
+                "Label image TIFF…",
+                ExportKind::Labels,
+                "16-bit: one label per object, holes 0",
+            ),
+            (
+                "ImageJ ROIs (Fiji)…",
+                ExportKind::Roi,
+                "a ROI set for Fiji's ROI Manager; holes as composite ROIs",
+            ),
+        ] {
+            if ui.button(label).on_hover_text(tip).clicked() {
+                app.send(Command::ExportDialog(kind));
+                ui.close();
+            }
+        }
+    })
+    .response
+    .on_hover_text("write the frame on screen (small regions dropped)");
+}
+
+/// The canvas tools and the shape commands.
+fn tools_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
+    for (label, tool, tip) in [
+        ("Seed", Tool::Seed, "click inside an object for a seed; drag to set its radius"),
+        ("Rectangle", Tool::Rect, "drag a rectangle that shrinks onto what it holds"),
+        ("Polygon", Tool::Polygon, "click corners; double-click or click the first corner to close"),
+        ("Select", Tool::Select, "select, drag or delete seeds and shapes"),
+        ("Edit", Tool::Edit, "drag a contour by hand (merges, splits and holes happen exactly); click to select a contour, Delete removes it"),
+    ] {
+        if ui
+            .selectable_label(app.settings.tool == tool, label)
+            .on_hover_text(tip)
+            .clicked()
+        {
+            app.send(Command::SetTool(tool));
+        }
+    }
+    command_button(
+        app,
+        ui,
+        "Wrap border",
+        "a rectangle 6 pixels inside the border: shrink-wraps every object",
+        Command::WrapBorder(6.0),
+    );
+    command_button(app, ui, "Find seeds", "one seed per object, found in the image (distance-transform maxima of the local threshold); move, delete or add seeds before you play", Command::FindSeeds);
+    let selected = app.selected;
+    if ui
+        .add_enabled(selected.is_some(), egui::Button::new("Delete shape"))
+        .on_hover_text("delete the selected seed or shape (Delete)")
+        .clicked()
+    {
+        if let Some(i) = selected {
+            app.send(Command::DeleteShape(i));
+        }
+    }
+}
+
+/// What the image shows: object polarity and the kind of image.
+fn image_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
+    let polarity = app.settings.polarity;
+    for (label, p) in [
+        ("Dark objects", Polarity::Dark),
+        ("Bright objects", Polarity::Bright),
+    ] {
+        if ui
+            .selectable_label(polarity == p, label)
+            .on_hover_text("whether the objects are darker or brighter than the background (fluorescence: bright)")
+            .clicked()
+            && polarity != p
+        {
+            app.send(Command::SetPolarity(p));
+        }
+    }
+    let modality = app.settings.modality;
+    egui::ComboBox::from_id_salt("modality")
+        .selected_text(format!("image: {}", modality.name()))
+        .show_ui(ui, |ui| {
+            for m in [
+                Modality::Generic,
+                Modality::Fluorescence,
+                Modality::PhaseContrast,
+                Modality::Brightfield,
+            ] {
+                if ui.selectable_label(modality == m, m.name()).clicked() && modality != m {
+                    app.send(Command::SetModality(m));
+                }
+            }
+        })
+        .response
+        .on_hover_text("the kind of image: fluorescence finds dim objects beside bright ones; phase contrast treats the bright halo around cells as background");
+}
+
+/// The engine, and a second one side by side.
+fn engine_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
+    use crate::evolution::Mode;
+    let mode = app.settings.mode;
+    for (label, m) in [
+        ("Adaptive", Mode::Adaptive),
+        ("Preserve", Mode::Preserve),
+        ("Implicit", Mode::Implicit),
+    ] {
+        if ui
+            .selectable_label(mode == m, label)
+            .on_hover_text("engine: adaptive topology; or keep the initial topology (preserve: explicit with a gap; implicit: fast marching with sub-pixel contact lines)")
+            .clicked()
+            && mode != m
+        {
+            app.send(Command::SetMode(m));
+        }
+    }
+    let compare = app.settings.compare;
+    let name = |m: Option<Mode>| m.map_or("none", |m| m.name());
+    egui::ComboBox::from_id_salt("compare")
+        .selected_text(format!("beside: {}", name(compare)))
+        .show_ui(ui, |ui| {
+            for m in [
+                None,
+                Some(Mode::Adaptive),
+                Some(Mode::Preserve),
+                Some(Mode::Implicit),
+            ] {
+                if ui.selectable_label(compare == m, name(m)).clicked() && compare != m {
+                    app.send(Command::SetCompare(m));
+                }
+            }
+        })
+        .response
+        .on_hover_text("run a second engine side by side on the same image and shapes");
+}
+
+/// Play or pause, step, next event, reset and the playback speed.
+fn playback_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
+    if app.playing {
+        command_button(app, ui, "Pause", "pause playback (Space)", Command::Pause);
+    } else {
+        command_button(
+            app,
+            ui,
+            "Play",
+            "evolve frame after frame until the contours settle (Space)",
+            Command::Play,
+        );
+    }
+    command_button(
+        app,
+        ui,
+        "Step",
+        "one frame: every vertex moves once (Right arrow)",
+        Command::Step(1),
+    );
+    command_button(app, ui, "Step 10", "ten frames", Command::Step(10));
+    command_button(
+        app,
+        ui,
+        "Next event",
+        "Step until a topology event (key E)",
+        Command::StepToEvent,
+    );
+    command_button(
+        app,
+        ui,
+        "Reset",
+        "back to the initialisation (undoable)",
+        Command::Reset,
+    );
+    ui.add(
+        egui::Slider::new(&mut app.settings.speed, 1.0..=240.0)
+            .logarithmic(true)
+            .text("frames/s"),
+    )
+    .on_hover_text("playback speed");
 }
 
 pub fn bottom_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
@@ -241,31 +321,43 @@ pub fn side_panel(app: &mut TopoApp, ui: &mut egui::Ui) {
         .show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
                 ui.collapsing("Parameters", |ui| {
-                    let s = &mut app.settings;
+                    let (mut w, mut step) = (app.settings.weights, app.settings.step);
                     let mut changed = false;
-                    let w = &mut s.weights;
-                    for (value, range, label) in [
-                        (&mut w.region, 0.0..=2.0, "region"),
-                        (&mut w.balloon, 0.0..=1.0, "balloon"),
-                        (&mut w.edge, 0.0..=1.0, "edge"),
-                        (&mut w.stretch, 0.0..=1.0, "stretch"),
-                        (&mut w.bend, 0.0..=0.5, "bend"),
-                        (&mut s.step, 0.1..=1.5, "step (× grid)"),
+                    for (value, range, label, tip) in [
+                        (&mut w.region, 0.0..=2.0, "region", "region: how strongly intensity pulls the contour towards the local decision level (object inside, background outside)"),
+                        (&mut w.balloon, 0.0..=1.0, "balloon", "balloon: a constant push outward where the image says object, so seeds grow through faint interiors"),
+                        (&mut w.edge, 0.0..=1.0, "edge", "edge: attraction to strong intensity gradients, where boundaries are"),
+                        (&mut w.stretch, 0.0..=1.0, "stretch", "stretch: pull of each vertex towards its neighbours' midpoint (shorter, tauter contours)"),
+                        (&mut w.bend, 0.0..=0.5, "bend", "bend: smoothing of that pull (rounder contours, fewer spikes)"),
+                        (&mut step, 0.1..=1.5, "step (× grid)", "step: the largest move of a vertex per frame, in grid spacings of the pyramid level"),
                     ] {
-                        changed |= ui.add(egui::Slider::new(value, range).text(label)).changed();
+                        changed |= ui
+                            .add(egui::Slider::new(value, range).text(label))
+                            .on_hover_text(tip)
+                            .changed();
                     }
+                    if changed {
+                        app.commands.push(Command::SetForces { weights: w, step });
+                    }
+                    let s = &mut app.settings;
                     ui.add(
                         egui::Slider::new(&mut s.min_area, 0.0..=500.0)
                             .text("min area px² (export)"),
-                    );
+                    )
+                    .on_hover_text("regions and holes smaller than this are left out of exports");
                     // Low never passes high: each slider's range ends at the other.
                     let (lo, hi) = s.contrast;
                     ui.add(egui::Slider::new(&mut s.contrast.0, 0.0..=hi).text("contrast low"))
                         .on_hover_text("display only: the darkest shown value (set per image from its percentiles when it opens)");
                     ui.add(egui::Slider::new(&mut s.contrast.1, lo..=1.0).text("contrast high"))
                         .on_hover_text("display only: the brightest shown value");
-                    ui.checkbox(&mut s.show_fill, "Fill regions");
-                    if ui.button("Reset parameters").clicked() {
+                    ui.checkbox(&mut s.show_fill, "Fill regions")
+                        .on_hover_text("fill the region between contours (holes stay open)");
+                    if ui
+                        .button("Reset parameters")
+                        .on_hover_text("forces, step, minimum area and contrast back to their defaults (undoable; a run goes on with them)")
+                        .clicked()
+                    {
                         app.commands.push(Command::ResetParameters);
                     }
                     let broad = app.settings.broad_phase;
@@ -283,9 +375,6 @@ pub fn side_panel(app: &mut TopoApp, ui: &mut egui::Ui) {
                         .on_hover_text(
                             "crossing search: vertex bins or staggered hashing (same contours, different speed)",
                         );
-                    if changed {
-                        app.commands.push(Command::Reset);
-                    }
                 });
                 egui::CollapsingHeader::new("Event log")
                     .default_open(true)

@@ -187,8 +187,15 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
         Some(_) => {
             // The image by its absolute path: the session may be read from anywhere.
             let abs = a.image.canonicalize().unwrap_or_else(|_| a.image.clone());
-            let s = Session::new(&abs, &image, shapes, ev.params().clone(), ev.frames(), true)
-                .map_err(|e| bad(format!("cannot read {}: {e}", a.image.display())))?;
+            let s = Session::new(
+                &abs,
+                &image,
+                shapes,
+                ev.start_params().clone(),
+                ev.frames(),
+                true,
+            )
+            .map_err(|e| bad(format!("cannot read {}: {e}", a.image.display())))?;
             Some(s.to_json().into_bytes())
         }
         None => None,

@@ -11,6 +11,7 @@
 //! evolver stays `Clone` (the app's checkpoints) and calls are static.
 
 use super::explicit::{Adaptive, Explicit, Preserve};
+use super::forces::ForceWeights;
 use super::implicit::ImplicitEngine;
 use crate::contours::ContourSet;
 use crate::topology::{MotionRegion, TopologyEvent};
@@ -62,6 +63,9 @@ pub trait Engine {
     /// Places where the engine held fronts apart that the adaptive engine would have
     /// joined (0 for the adaptive engine).
     fn held_contacts(&self, level: usize) -> usize;
+    /// New force weights and step for the frames to come (the implicit engine's speeds
+    /// come from the intensity model alone: nothing changes there).
+    fn set_forces(&mut self, weights: ForceWeights, step: f64);
 }
 
 /// The three engines, dispatched by enum.
@@ -106,5 +110,8 @@ impl Engine for Engines {
     }
     fn held_contacts(&self, level: usize) -> usize {
         each!(self, e => e.held_contacts(level))
+    }
+    fn set_forces(&mut self, weights: ForceWeights, step: f64) {
+        each!(self, e => e.set_forces(weights, step))
     }
 }

@@ -16,7 +16,7 @@
 use super::engine::{Engine, Engines, Frame};
 use super::explicit::Explicit;
 use super::field::{Field, Pyramid};
-use super::forces::IntensityModel;
+use super::forces::{ForceWeights, IntensityModel};
 use super::implicit::{Implicit, ImplicitEngine};
 use super::init::{hints, Shape};
 use super::local::{self, Modality};
@@ -37,6 +37,48 @@ pub struct FrameEvent {
     pub event: TopologyEvent,
 }
 
+/// A user's intervention in a run, at the frame it was made: what a session replays.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(tag = "edit", rename_all = "snake_case")]
+pub enum Edit {
+    /// New force weights and step from this frame on.
+    Forces {
+        /// Frames done when it was made.
+        frame: usize,
+        /// The new weights.
+        weights: ForceWeights,
+        /// The new step, in grid spacings.
+        step: f64,
+    },
+    /// A hand drag of a contour vertex ([`Evolver::hand_drag`]).
+    Drag {
+        /// Frames done when it was made.
+        frame: usize,
+        /// The vertex.
+        vertex: u32,
+        /// Where to.
+        to: Point,
+    },
+    /// A contour deleted by hand ([`Evolver::delete_contour`]).
+    Delete {
+        /// Frames done when it was made.
+        frame: usize,
+        /// The contour.
+        contour: u32,
+    },
+}
+
+impl Edit {
+    /// Frames done when the edit was made.
+    pub fn frame(&self) -> usize {
+        match *self {
+            Edit::Forces { frame, .. } | Edit::Drag { frame, .. } | Edit::Delete { frame, .. } => {
+                frame
+            }
+        }
+    }
+}
+
 /// Runs the evolution.
 #[derive(Clone)]
 pub struct Evolver {
@@ -46,6 +88,10 @@ pub struct Evolver {
     model: IntensityModel,
     frame: usize,
     events: Vec<FrameEvent>,
+    /// The user's interventions so far, in order.
+    edits: Vec<Edit>,
+    /// The parameters the run started with (force changes update `params`).
+    start_params: Params,
     width: usize,
     height: usize,
 }
@@ -94,6 +140,7 @@ impl Evolver {
         if engine.contours().contour_count() == 0 {
             return Err(EvolveError::EmptyInit);
         }
+        let start_params = params.clone();
         Ok(Evolver {
             engine,
             schedule: Schedule::new(level),
@@ -101,6 +148,8 @@ impl Evolver {
             model,
             frame: 0,
             events: Vec::new(),
+            edits: Vec::new(),
+            start_params,
             width: image.width,
             height: image.height,
         })
@@ -146,9 +195,13 @@ impl Evolver {
     pub fn is_finished(&self) -> bool {
         self.schedule.converged || self.schedule.stopped || self.frame >= self.params.max_frames
     }
-    /// The parameters of the run.
+    /// The parameters of the run now.
     pub fn params(&self) -> &Params {
         &self.params
+    }
+    /// The parameters the run started with, before any [`Edit::Forces`].
+    pub fn start_params(&self) -> &Params {
+        &self.start_params
     }
     /// Every topology event so far, with its frame.
     pub fn events(&self) -> &[FrameEvent] {
@@ -219,6 +272,11 @@ impl Evolver {
     /// [`Evolver::hand_move`] for a drag: also returns the vertex that leads at the end
     /// (`None` after a merge or split: the drag has done its work).
     pub fn hand_drag(&mut self, v: u32, to: Point) -> (Vec<TopologyEvent>, Option<u32>) {
+        self.edits.push(Edit::Drag {
+            frame: self.frame,
+            vertex: v,
+            to,
+        });
         let level = self.schedule.level;
         let (events, lead) = match &mut self.engine {
             Engines::Adaptive(e) => e.hand_drag(v, to, level),
@@ -236,7 +294,48 @@ impl Evolver {
 
     /// Deletes contour `id` (an outer ring with its holes, or one hole): a hand edit.
     pub fn delete_contour(&mut self, id: ContourId) {
+        self.edits.push(Edit::Delete {
+            frame: self.frame,
+            contour: id.0,
+        });
         self.engine.contours_mut().remove_region(id);
+    }
+
+    /// New force weights and step from the current frame on: the run continues from its
+    /// contours as they are (a settled run moves again under the new forces).
+    pub fn set_forces(&mut self, weights: ForceWeights, step: f64) -> Result<(), EvolveError> {
+        let params = Params {
+            weights,
+            step,
+            ..self.params.clone()
+        };
+        check_params(&params)?;
+        self.params = params;
+        self.engine.set_forces(weights, step);
+        self.schedule.resume();
+        self.edits.push(Edit::Forces {
+            frame: self.frame,
+            weights,
+            step,
+        });
+        Ok(())
+    }
+
+    /// The user's interventions so far ([`Edit`]), in order.
+    pub fn edits(&self) -> &[Edit] {
+        &self.edits
+    }
+
+    /// Makes `edit` again (a session's replay): the caller has stepped to its frame.
+    pub fn redo_edit(&mut self, edit: &Edit) -> Result<(), EvolveError> {
+        match *edit {
+            Edit::Forces { weights, step, .. } => self.set_forces(weights, step)?,
+            Edit::Drag { vertex, to, .. } => {
+                self.hand_drag(vertex, to);
+            }
+            Edit::Delete { contour, .. } => self.delete_contour(ContourId(contour)),
+        }
+        Ok(())
     }
 
     fn log_events(&mut self, events: &[TopologyEvent]) {
@@ -251,11 +350,11 @@ impl Evolver {
         super::measure::drop_small(self.engine.contours_mut(), self.params.min_area);
     }
 
-    /// The contours as [`Evolver::filter_clutter`] would leave them, the run untouched
-    /// (the app exports a frame and plays on).
-    pub fn filtered_contours(&self) -> ContourSet {
+    /// The contours with regions and holes smaller than `min_area` dropped, the run
+    /// untouched (the app exports a frame and plays on).
+    pub fn filtered_contours(&self, min_area: f64) -> ContourSet {
         let mut set = self.contours().clone();
-        super::measure::drop_small(&mut set, self.params.min_area);
+        super::measure::drop_small(&mut set, min_area);
         set
     }
 }

@@ -17,7 +17,7 @@ pub mod schedule;
 pub mod seeds;
 
 pub use engine::{Engine, Frame};
-pub use evolver::{Evolver, FrameEvent};
+pub use evolver::{Edit, Evolver, FrameEvent};
 pub use field::{Field, Pyramid};
 pub use forces::{ForceWeights, IntensityModel, Polarity};
 pub use init::Shape;

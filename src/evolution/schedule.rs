@@ -49,6 +49,15 @@ impl Schedule {
         }
     }
 
+    /// The run goes on from where it is (forces changed): nothing is settled any more.
+    pub fn resume(&mut self) {
+        self.calm = 0;
+        self.level_frames = 0;
+        self.areas.clear();
+        self.converged = false;
+        self.stopped = false;
+    }
+
     /// Judges the frame that just left `set` with `share` of its vertices active; returns
     /// the finer level to move to, if this level is done.
     pub fn judge(&mut self, set: &ContourSet, share: f64, converged_share: f64) -> Option<usize> {

@@ -1,14 +1,15 @@
 //! Session files: everything needed to reproduce a segmentation headless, identically —
 //! the image (path, size and CRC-32 of its bytes, so a changed image is refused), the
 //! shapes the evolution started from (automatic seeds as the seeds they became), the
-//! parameters, and how far it ran. JSON, versioned; a relative image path is relative to
+//! parameters, the user's edits on the way (force changes, hand drags, deletions, each
+//! at its frame), and how far it ran. JSON, versioned; a relative image path is relative to
 //! the session file's folder, so a folder of images and sessions can move as a whole.
 //!
 //! The engine is deterministic: the same image, shapes and parameters give the same
 //! contours frame by frame, so a replay equals the run that saved the session (the
 //! JSON output is byte-identical; tests/cli.rs checks it).
 
-use crate::evolution::{EvolveError, Evolver, Field, Params, Shape};
+use crate::evolution::{Edit, EvolveError, Evolver, Field, Params, Shape};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -48,6 +49,9 @@ pub struct Session {
     /// The evolution ran to its end (converged or out of frames), not stopped at a
     /// frame chosen by the user.
     pub finished: bool,
+    /// The user's interventions (force changes, hand drags, deletions) at their frames.
+    #[serde(default)]
+    pub edits: Vec<Edit>,
 }
 
 /// Why a session cannot be used.
@@ -95,7 +99,14 @@ impl Session {
             params,
             frames,
             finished,
+            edits: Vec::new(),
         })
+    }
+
+    /// The session with the user's `edits` (the parameters are the run's first ones).
+    pub fn with_edits(mut self, edits: &[Edit]) -> Self {
+        self.edits = edits.to_vec();
+        self
     }
 
     /// The session as pretty JSON.
@@ -148,6 +159,12 @@ impl Session {
             return Err(SessionError::Changed(path));
         }
         let mut ev = Evolver::new(&image, &self.shapes, self.params.clone())?;
+        for edit in &self.edits {
+            while ev.frames() < edit.frame() && !ev.is_finished() {
+                ev.step();
+            }
+            ev.redo_edit(edit)?;
+        }
         if self.finished {
             ev.run();
         } else {

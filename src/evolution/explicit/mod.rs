@@ -231,6 +231,10 @@ impl<M: Motion> Engine for Explicit<M> {
     fn held_contacts(&self, level: usize) -> usize {
         M::held(&self.set, Pyramid::scale(level))
     }
+    fn set_forces(&mut self, weights: ForceWeights, step: f64) {
+        self.weights = weights;
+        self.step = step;
+    }
 }
 
 /// Outward unit normal at x between neighbours p and n (region on the left).

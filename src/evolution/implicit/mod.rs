@@ -344,6 +344,7 @@ impl Engine for ImplicitEngine {
     fn held_contacts(&self, _: usize) -> usize {
         self.state.cuts + self.state.rejected
     }
+    fn set_forces(&mut self, _: super::forces::ForceWeights, _: f64) {}
 }
 
 /// Marks the pixels whose centres lie inside `shape`.
