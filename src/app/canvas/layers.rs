@@ -1,0 +1,203 @@
+//! The drawn layers of the canvas, bottom to top: image, second engine's half, contours
+//! with their fill, motion flashes, the user's shapes.
+
+use super::{fill, ring_color, View, FILL_WHILE_PLAYING_MAX_VERTICES};
+use crate::app::TopoApp;
+use crate::evolution::Shape;
+use crate::geometry::Point;
+use egui::{Color32, Pos2, Rect, Stroke, Vec2};
+
+/// The image through the contrast window (the texture is rebuilt when the window moves).
+pub(super) fn image_layer(
+    app: &mut TopoApp,
+    ui: &egui::Ui,
+    painter: &egui::Painter,
+    view: View,
+    image: &crate::evolution::Field,
+) {
+    if app.texture.is_none() || app.texture_contrast != app.settings.contrast {
+        let (lo, hi) = app.settings.contrast;
+        let span = (hi - lo).max(1e-3);
+        let pixels: Vec<Color32> = image
+            .data
+            .iter()
+            .map(|&v| Color32::from_gray((((v - lo) / span).clamp(0.0, 1.0) * 255.0) as u8))
+            .collect();
+        let img = egui::ColorImage::new([image.width, image.height], pixels);
+        app.texture = Some(
+            ui.ctx()
+                .load_texture("image", img, egui::TextureOptions::NEAREST),
+        );
+        app.texture_contrast = app.settings.contrast;
+    }
+    if let Some(t) = &app.texture {
+        painter.image(t.id(), image_rect(view, image), UV, Color32::WHITE);
+    }
+}
+
+/// The whole texture.
+const UV: Rect = Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0));
+
+/// Where the image lies in the main half.
+fn image_rect(view: View, image: &crate::evolution::Field) -> Rect {
+    Rect::from_min_max(
+        view.to_screen(Point::new(0.0, 0.0)),
+        view.to_screen(Point::new(image.width as f64, image.height as f64)),
+    )
+}
+
+/// Draws rings as closed lines (holes thinner), each in its colour, shifted by `shift`.
+fn draw_rings(painter: &egui::Painter, view: View, rings: &[crate::app::RingView], shift: Vec2) {
+    for ring in rings {
+        let mut pts: Vec<Pos2> = ring
+            .points
+            .iter()
+            .map(|&p| view.to_screen(p) + shift)
+            .collect();
+        pts.push(pts[0]);
+        painter.add(egui::Shape::line(
+            pts,
+            Stroke::new(if ring.hole { 1.5 } else { 2.0 }, ring_color(ring.id)),
+        ));
+    }
+}
+
+/// The second engine's half: the same image and view, its contours, both halves labelled.
+pub(super) fn compare_layer(
+    app: &TopoApp,
+    full_painter: &egui::Painter,
+    painter: &egui::Painter,
+    view: View,
+    r: Rect,
+) {
+    let (Some(t), Some(image)) = (&app.texture, &app.image) else {
+        return;
+    };
+    let p2 = full_painter.with_clip_rect(r);
+    let shift = r.min - view.rect.min;
+    p2.image(
+        t.id(),
+        image_rect(view, image).translate(shift),
+        UV,
+        Color32::WHITE,
+    );
+    if let Some(rec) = app.shown_record_b() {
+        draw_rings(&p2, view, &rec.rings, shift);
+    }
+    let label = |p: &egui::Painter, at: Rect, text: String| {
+        p.text(
+            at.min + Vec2::new(8.0, 6.0),
+            egui::Align2::LEFT_TOP,
+            text,
+            egui::FontId::proportional(15.0),
+            Color32::from_rgb(255, 230, 120),
+        );
+    };
+    let count = |rec: Option<&crate::app::FrameRecord>| {
+        rec.map_or(String::new(), |r| format!(" — {} contours", r.contours))
+    };
+    let compare = app.settings.compare.map_or("", |m| m.name());
+    label(&p2, r, format!("{compare}{}", count(app.shown_record_b())));
+    let mode = app.settings.mode.name();
+    label(
+        painter,
+        view.rect,
+        format!("{mode}{}", count(app.shown_record())),
+    );
+    full_painter.line_segment(
+        [
+            Pos2::new(r.min.x - 1.0, r.min.y),
+            Pos2::new(r.min.x - 1.0, r.max.y),
+        ],
+        Stroke::new(2.0, Color32::DARK_GRAY),
+    );
+}
+
+/// The contours of the frame on screen, their region filled (holes open).
+pub(super) fn contours_layer(app: &mut TopoApp, painter: &egui::Painter, view: View) {
+    let Some(rec) = app
+        .run
+        .as_ref()
+        .and_then(|r| r.history.get(app.shown.min(r.history.len() - 1)))
+    else {
+        return;
+    };
+    // Filling triangulates every ring; for large sets it waits until playback pauses so
+    // that playing stays fluid.
+    let small = rec.vertices <= FILL_WHILE_PLAYING_MAX_VERTICES;
+    if app.settings.show_fill && (small || !app.playing) {
+        let cs = &mut app.canvas;
+        let key = (rec.index, rec.vertices);
+        let stale = cs
+            .fill_cache
+            .as_ref()
+            .is_none_or(|(i, v, _)| (*i, *v) != key);
+        if stale {
+            cs.fill_cache = Some((key.0, key.1, fill::FillMesh::of(&rec.rings)));
+        }
+        if let Some((_, _, m)) = &cs.fill_cache {
+            painter.add(m.to_mesh(
+                &|p| view.to_screen(p),
+                Color32::from_rgba_unmultiplied(255, 170, 60, 60),
+            ));
+        }
+    }
+    draw_rings(painter, view, &rec.rings, Vec2::ZERO);
+}
+
+/// Flashes the motion regions of this frame's events and of the few frames before it.
+pub(super) fn motion_layer(app: &TopoApp, painter: &egui::Painter, view: View) {
+    let Some(run) = app.run.as_ref() else { return };
+    for back in 0..6usize {
+        let Some(old) = app.shown.checked_sub(back).and_then(|i| run.history.get(i)) else {
+            break;
+        };
+        let color = Color32::from_rgba_unmultiplied(255, 40, 200, 255 - back as u8 * 40);
+        for m in &old.motions {
+            let (corners, k) = m.loop_points();
+            let pts: Vec<Pos2> = corners[..k].iter().map(|&p| view.to_screen(p)).collect();
+            painter.add(egui::Shape::closed_line(pts, Stroke::new(2.5, color)));
+            painter.circle_stroke(
+                view.to_screen(m.q.unwrap_or(m.o)),
+                10.0 - back as f32,
+                Stroke::new(2.0, color),
+            );
+        }
+    }
+}
+
+/// The user's shapes, the selected one highlighted.
+pub(super) fn shapes_layer(app: &TopoApp, painter: &egui::Painter, view: View) {
+    for (i, s) in app.shapes.iter().enumerate() {
+        let sel = app.selected == Some(i);
+        let stroke = Stroke::new(
+            if sel { 2.5 } else { 1.5 },
+            if sel {
+                Color32::YELLOW
+            } else {
+                Color32::from_rgb(80, 200, 255)
+            },
+        );
+        match s {
+            Shape::Disk { center, radius } => {
+                let c = view.to_screen(*center);
+                painter.circle_stroke(c, *radius as f32 * view.zoom, stroke);
+                painter.circle_filled(c, 2.0, stroke.color);
+            }
+            Shape::Rect { min, max } => {
+                painter.rect_stroke(
+                    Rect::from_min_max(view.to_screen(*min), view.to_screen(*max)),
+                    0.0,
+                    stroke,
+                    egui::StrokeKind::Middle,
+                );
+            }
+            Shape::Polygon(p) => {
+                painter.add(egui::Shape::closed_line(
+                    p.iter().map(|&q| view.to_screen(q)).collect(),
+                    stroke,
+                ));
+            }
+        }
+    }
+}

@@ -1,0 +1,187 @@
+//! The canvas tools: presses, drags and releases become [`Command`]s; the shape being
+//! drawn is previewed.
+
+use super::View;
+use crate::app::{Command, Tool, TopoApp};
+use crate::evolution::Shape;
+use crate::geometry::Point;
+use egui::{Color32, Pos2, Rect, Stroke};
+
+/// The tools: presses, drags and releases become commands; drawing previews.
+pub(super) fn tools_layer(
+    app: &mut TopoApp,
+    ui: &egui::Ui,
+    response: &egui::Response,
+    painter: &egui::Painter,
+    view: View,
+    image: &crate::evolution::Field,
+) {
+    let tool = app.settings.tool;
+    let zoom = view.zoom;
+    let cs = &mut app.canvas;
+    let pointer = response.interact_pointer_pos().or(response.hover_pos());
+    if response.drag_started_by(egui::PointerButton::Primary) {
+        if let Some(p) = pointer {
+            let at = view.to_image(p);
+            cs.drag_from_in_image = Some(at);
+            cs.drag_to_in_image = Some(at);
+            if tool == Tool::Select {
+                cs.moving = hit_shape(&app.shapes, at, 6.0 / zoom as f64);
+                app.commands.push(Command::Select(cs.moving));
+            }
+            if tool == Tool::Edit {
+                // The vertex under the press (a drag starts a few pixels later) in the
+                // frame on screen.
+                let at = ui
+                    .input(|i| i.pointer.press_origin())
+                    .map_or(at, |s| view.to_image(s));
+                app.commands.push(Command::GrabVertex {
+                    at,
+                    tol: 8.0 / zoom as f64,
+                });
+            }
+        }
+    }
+    if response.dragged_by(egui::PointerButton::Primary) {
+        if let (Some(p), Some(_)) = (pointer, cs.drag_from_in_image) {
+            cs.drag_to_in_image = Some(view.to_image(p));
+            if let (Tool::Edit, Some(v)) = (tool, cs.editing) {
+                let to = view.to_image(p);
+                app.commands.push(Command::HandMove { vertex: v, to });
+            }
+        }
+    }
+    if let (Some(a), Some(b)) = (cs.drag_from_in_image, cs.drag_to_in_image) {
+        let yellow = Stroke::new(1.5, Color32::YELLOW);
+        match tool {
+            Tool::Seed => {
+                let r = (a.dist(b) as f32 * zoom).max(2.0);
+                painter.circle_stroke(view.to_screen(a), r, yellow);
+            }
+            Tool::Rect => {
+                painter.rect_stroke(
+                    Rect::from_two_pos(view.to_screen(a), view.to_screen(b)),
+                    0.0,
+                    yellow,
+                    egui::StrokeKind::Middle,
+                );
+            }
+            _ => {}
+        }
+    }
+    if response.drag_stopped_by(egui::PointerButton::Primary) || response.clicked() {
+        let end = pointer.map(|s| view.to_image(s));
+        let start = cs.drag_from_in_image.take().or(end);
+        let stop = cs.drag_to_in_image.take().or(end);
+        if let (Some(a), Some(b)) = (start, stop) {
+            release(app, response, view, image, a, b);
+        }
+    }
+    let cs = &app.canvas;
+    if !cs.polygon.is_empty() {
+        let mut pts: Vec<Pos2> = cs.polygon.iter().map(|&p| view.to_screen(p)).collect();
+        if let Some(h) = response.hover_pos() {
+            pts.push(h);
+        }
+        painter.add(egui::Shape::line(pts, Stroke::new(1.5, Color32::YELLOW)));
+    }
+}
+
+/// A press at `a` released at `b`: what it makes with the current tool.
+fn release(
+    app: &mut TopoApp,
+    response: &egui::Response,
+    view: View,
+    image: &crate::evolution::Field,
+    a: Point,
+    b: Point,
+) {
+    let zoom = view.zoom;
+    let cs = &mut app.canvas;
+    let inside = |p: Point| {
+        p.x >= 0.0 && p.y >= 0.0 && p.x <= image.width as f64 && p.y <= image.height as f64
+    };
+    let command = match app.settings.tool {
+        Tool::Seed if inside(a) => {
+            // A click makes a seed of default radius; a drag sets the radius.
+            let r = if a.dist(b) < 2.0 { 5.0 } else { a.dist(b) };
+            Some(Command::AddShape(Shape::Disk {
+                center: a,
+                radius: r,
+            }))
+        }
+        Tool::Rect if a.dist(b) >= 3.0 => {
+            let min = Point::new(a.x.min(b.x).max(0.0), a.y.min(b.y).max(0.0));
+            let max = Point::new(
+                a.x.max(b.x).min(image.width as f64),
+                a.y.max(b.y).min(image.height as f64),
+            );
+            Some(Command::AddShape(Shape::Rect { min, max }))
+        }
+        Tool::Polygon if inside(b) => {
+            let close = cs.polygon.len() >= 3 && (b.dist(cs.polygon[0]) * zoom as f64) < 8.0;
+            if !(close || response.double_clicked()) {
+                cs.polygon.push(b);
+                None
+            } else if cs.polygon.len() >= 3 {
+                Some(Command::AddShape(Shape::Polygon(std::mem::take(
+                    &mut cs.polygon,
+                ))))
+            } else {
+                None
+            }
+        }
+        // A click (no vertex dragged) selects the contour under it.
+        Tool::Edit if cs.editing.take().is_none() || a.dist(b) == 0.0 => {
+            let id = app.shown_record().and_then(|r| contour_at(&r.rings, b));
+            Some(Command::SelectContour(id))
+        }
+        Tool::Select => match cs.moving.take() {
+            Some(i) if a.dist(b) > 0.0 => Some(Command::MoveShape {
+                index: i,
+                by: b - a,
+            }),
+            Some(_) => None,
+            // A plain click (no drag began): select what is under it.
+            None => Some(Command::Select(hit_shape(
+                &app.shapes,
+                b,
+                6.0 / zoom as f64,
+            ))),
+        },
+        _ => None,
+    };
+    app.commands.extend(command);
+}
+
+/// The innermost ring of the frame on screen around `at` (a hole inside a region wins).
+fn contour_at(rings: &[crate::app::RingView], at: Point) -> Option<u32> {
+    rings
+        .iter()
+        .filter(|r| crate::geometry::winding_number(&r.points, at) != 0)
+        .min_by(|a, b| {
+            let area = |r: &crate::app::RingView| crate::geometry::signed_area(&r.points).abs();
+            area(a).total_cmp(&area(b))
+        })
+        .map(|r| r.id)
+}
+
+/// The shape under `at` (within `tol` image pixels of its outline or centre).
+fn hit_shape(shapes: &[Shape], at: Point, tol: f64) -> Option<usize> {
+    shapes.iter().enumerate().rev().find_map(|(i, s)| {
+        let hit = match s {
+            Shape::Disk { center, radius } => at.dist(*center) <= radius + tol,
+            Shape::Rect { min, max } => {
+                let near_x = at.x >= min.x - tol && at.x <= max.x + tol;
+                let near_y = at.y >= min.y - tol && at.y <= max.y + tol;
+                let on_edge = (at.x - min.x).abs() < tol
+                    || (at.x - max.x).abs() < tol
+                    || (at.y - min.y).abs() < tol
+                    || (at.y - max.y).abs() < tol;
+                near_x && near_y && on_edge
+            }
+            Shape::Polygon(p) => crate::geometry::winding_number(p, at) != 0,
+        };
+        hit.then_some(i)
+    })
+}
