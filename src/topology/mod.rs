@@ -174,6 +174,16 @@ impl ContourSet {
         v: u32,
         to: Option<Point>,
     ) -> Result<Vec<TopologyEvent>, MoveError> {
+        let mut plan = self.plan_move(v, to)?;
+        let moved = self.commit_move(&plan, v, to);
+        Ok(self.settle_move(&mut plan, moved))
+    }
+
+    /// Everything a move decides before anything changes: the motion region, the
+    /// crossings of c' (Directive 1), the rings inside M (Directive 2), the rings whose
+    /// labels may change.
+    #[inline(always)]
+    fn plan_move(&mut self, v: u32, to: Option<Point>) -> Result<MovePlan, MoveError> {
         let (pid, nid) = (self.prev[v as usize], self.next[v as usize]);
         let (p, o, n) = (
             self.pos[pid as usize],
@@ -265,21 +275,40 @@ impl ContourSet {
                 })
                 .collect()
         };
+        Ok(MovePlan {
+            pid,
+            nid,
+            p,
+            o,
+            n,
+            label,
+            crossings,
+            inside,
+            moving_inside,
+            old,
+        })
+    }
 
-        // The move itself: c' replaces c.
+    /// The move itself: c' replaces c (the stored area follows). Returns the moved vertex,
+    /// or `None` for a removal.
+    #[inline(always)]
+    fn commit_move(&mut self, plan: &MovePlan, v: u32, to: Option<Point>) -> Option<u32> {
+        let MovePlan {
+            pid, nid, p, o, n, ..
+        } = *plan;
         let delta2 = match to {
             Some(q) => p.cross(q) + q.cross(n) - p.cross(o) - o.cross(n),
             None => p.cross(n) - p.cross(o) - o.cross(n),
         };
         {
-            let r = self.ring_mut(label);
+            let r = self.ring_mut(plan.label);
             r.area2 += delta2;
             if to.is_none() {
                 r.len -= 1;
                 r.anchor = pid;
             }
         }
-        let moved = match to {
+        match to {
             Some(q) => {
                 self.pos[v as usize] = q;
                 crate::contours::BroadPhase::update(&mut self.bins, v, q);
@@ -291,13 +320,19 @@ impl ContourSet {
                 self.release(v);
                 None
             }
-        };
+        }
+    }
 
+    /// After the move: splices at the crossings and settles the loops (Directive 1),
+    /// splits edges left too long, deletes the rings inside M (Directive 2).
+    #[inline(always)]
+    fn settle_move(&mut self, plan: &mut MovePlan, moved: Option<u32>) -> Vec<TopologyEvent> {
+        let (pid, p, n, label) = (plan.pid, plan.p, plan.n, plan.label);
         let mut events = Vec::new();
-        if crossings.is_empty() {
-            if let Some(w) = moving_inside {
+        if plan.crossings.is_empty() {
+            if let Some(w) = plan.moving_inside {
                 self.remove_ring(crate::contours::ContourId(label));
-                events.push(deletion_event(label, old[0].outer, w, None));
+                events.push(deletion_event(label, plan.old[0].outer, w, None));
             } else if let Some(v) = moved {
                 let q = self.pos[v as usize];
                 let bound2 = self.max_edge * self.max_edge;
@@ -308,9 +343,9 @@ impl ContourSet {
                 self.split_long_edges(&[pid]);
             }
         } else {
-            let kept = self.splice_crossings(pid, moved, &mut crossings, label);
+            let kept = self.splice_crossings(pid, moved, &mut plan.crossings, label);
             let loops = self.collect_loops(&kept);
-            self.settle_loops(loops, &old, &mut events);
+            self.settle_loops(loops, &plan.old, &mut events);
             let mut fresh_edges: Vec<u32> = Vec::new();
             for &x in &kept {
                 if self.is_alive(x) {
@@ -322,16 +357,15 @@ impl ContourSet {
             }
             self.split_long_edges(&fresh_edges);
         }
-        crossings.clear();
         let survivor = moved
             .filter(|&v| self.is_alive(v))
             .map(|v| self.label[v as usize]);
-        for (l, w) in inside {
+        for &(l, w) in &plan.inside {
             let outer = !self.is_hole(crate::contours::ContourId(l));
             self.remove_ring(crate::contours::ContourId(l));
             events.push(deletion_event(l, outer, w, survivor));
         }
-        Ok(events)
+        events
     }
 
     /// Walks each loop holding a kept crossing vertex once.
@@ -454,6 +488,25 @@ impl ContourSet {
             }
         }
     }
+}
+
+/// What [`ContourSet::replace_vertex`] decided before changing anything.
+struct MovePlan {
+    pid: u32,
+    nid: u32,
+    p: Point,
+    o: Point,
+    n: Point,
+    /// The moving vertex's ring.
+    label: u32,
+    /// Directive 1's crossings of c', sorted along it.
+    crossings: Vec<directive1::Crossing>,
+    /// Directive 2: rings inside M with M's winding over them.
+    inside: Vec<(u32, i32)>,
+    /// The moving ring itself inside M (a ring swept away), with M's winding.
+    moving_inside: Option<i32>,
+    /// The rings whose labels may change, as they were.
+    old: Vec<OldRing>,
 }
 
 /// The event for ring `id` deleted by Directive 2 with M's winding `w` over it.
