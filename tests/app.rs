@@ -683,3 +683,34 @@ fn a_session_replays_hand_edits_and_force_changes() {
     assert_eq!(headless, want);
     let _ = std::fs::remove_file(path);
 }
+
+/// The object table lists the regions of the frame on screen with their measurements; a
+/// click on a row selects that contour (highlighted on the canvas), a second click
+/// clears the selection.
+#[test]
+fn the_object_table_is_linked_to_the_canvas() {
+    let mut app = TopoApp::with_sample();
+    app.send(Command::Step(60));
+    let mut h = harness(app);
+    h.step();
+    h.step();
+    let set = h.state().run.as_ref().unwrap().evolver.contours().clone();
+    let regions = topocontour::evolution::regions(&set);
+    assert!(regions.len() >= 2, "the sample has several cells");
+    // The largest region: the table's first row.
+    let id = regions
+        .iter()
+        .max_by(|a, b| a.area.total_cmp(&b.area))
+        .unwrap()
+        .id
+        .0;
+    h.get_by_label("Objects");
+    h.get_by_label(&format!("#{id}")).click();
+    h.step();
+    h.step();
+    assert_eq!(h.state().selected_contour, Some(id));
+    h.get_by_label(&format!("#{id}")).click();
+    h.step();
+    h.step();
+    assert_eq!(h.state().selected_contour, None);
+}

@@ -8,6 +8,7 @@ mod files;
 mod fill;
 mod history;
 mod keys;
+mod objects;
 mod panels;
 mod run;
 mod settings;
@@ -68,8 +69,11 @@ pub struct TopoApp {
     history: history::History,
     /// The help window is open.
     pub show_help: bool,
-    /// The contour selected with the Edit tool (its measurements show in the status bar).
+    /// The contour selected with the Edit tool or in the object table (its measurements
+    /// show in the status bar, its row in the table).
     pub selected_contour: Option<u32>,
+    /// The object table's rows, measured once per frame shown.
+    objects: objects::ObjectTable,
 }
 
 impl Default for TopoApp {
@@ -98,6 +102,7 @@ impl Default for TopoApp {
             history: history::History::default(),
             show_help: false,
             selected_contour: None,
+            objects: objects::ObjectTable::default(),
         }
     }
 }

@@ -376,6 +376,7 @@ pub fn side_panel(app: &mut TopoApp, ui: &mut egui::Ui) {
                             "crossing search: vertex bins or staggered hashing (same contours, different speed)",
                         );
                 });
+                objects_ui(app, ui);
                 egui::CollapsingHeader::new("Event log")
                     .default_open(true)
                     .show(ui, |ui| {
@@ -442,5 +443,64 @@ fn plots_ui(app: &TopoApp, ui: &mut egui::Ui) {
                 "vertices / 100",
                 series(&|r| r.vertices as f64 / 100.0),
             ));
+        });
+}
+
+/// The object table of the frame on screen: one row per region (outer ring with its
+/// holes), linked to the canvas — a click on a row selects the contour there, a contour
+/// selected on the canvas (Edit tool) is the highlighted row.
+fn objects_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
+    egui::CollapsingHeader::new("Objects")
+        .default_open(true)
+        .show(ui, |ui| {
+            let shown = app.shown;
+            let Some(rec) = app
+                .run
+                .as_ref()
+                .and_then(|r| r.history.get(shown.min(r.history.len() - 1)))
+            else {
+                ui.label("No contours yet: play or step the evolution.");
+                return;
+            };
+            let rows = app.objects.rows(rec);
+            ui.label(format!("{} objects in frame {}", rows.len(), rec.index))
+                .on_hover_text("regions of the frame on screen: area and perimeter in pixels, circularity 4πA/P² (1 for a disk)");
+            let selected = app.selected_contour;
+            let mut clicked = None;
+            egui::ScrollArea::vertical()
+                .id_salt("objects")
+                .max_height(220.0)
+                .show(ui, |ui| {
+                    egui::Grid::new("object table")
+                        .striped(true)
+                        .num_columns(5)
+                        .show(ui, |ui| {
+                            for h in ["object", "area px²", "perimeter px", "circularity", "holes"] {
+                                ui.strong(h);
+                            }
+                            ui.end_row();
+                            for r in rows.iter() {
+                                let id = r.id.0;
+                                let on = selected == Some(id);
+                                let cell = ui
+                                    .selectable_label(on, format!("#{id}"))
+                                    .on_hover_text("select this contour on the canvas");
+                                if on {
+                                    cell.scroll_to_me(None);
+                                }
+                                if cell.clicked() {
+                                    clicked = Some(if on { None } else { Some(id) });
+                                }
+                                ui.label(format!("{:.1}", r.area));
+                                ui.label(format!("{:.1}", r.perimeter));
+                                ui.label(format!("{:.3}", r.circularity));
+                                ui.label(format!("{}", r.holes.len()));
+                                ui.end_row();
+                            }
+                        });
+                });
+            if let Some(id) = clicked {
+                app.send(Command::SelectContour(id));
+            }
         });
 }

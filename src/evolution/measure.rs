@@ -43,42 +43,86 @@ fn ring_moments(pts: &[Point]) -> (f64, Point) {
 /// All regions, outer rings in id order.
 pub fn regions(set: &ContourSet) -> Vec<Region> {
     let parents = set.parents();
-    let mut out = Vec::new();
-    for &(id, _) in parents.iter().filter(|(id, _)| !set.is_hole(*id)) {
-        let holes: Vec<ContourId> = parents
-            .iter()
-            .filter(|(h, p)| *p == Some(id) && set.is_hole(*h))
-            .map(|(h, _)| *h)
-            .collect();
-        let (mut area, mut m) = (0.0, Point::default());
-        let mut perimeter = 0.0;
-        for r in std::iter::once(id).chain(holes.iter().copied()) {
-            let pts = set.ring_points(r);
-            let (a, mr) = ring_moments(&pts);
-            area += a;
-            m = m + mr;
-            perimeter += ring_perimeter(&pts);
-        }
-        let centroid = if area != 0.0 {
-            m * (1.0 / area)
-        } else {
-            Point::default()
-        };
-        let circularity = if perimeter > 0.0 {
-            4.0 * std::f64::consts::PI * area / (perimeter * perimeter)
-        } else {
-            0.0
-        };
-        out.push(Region {
-            id,
-            holes,
-            area,
-            perimeter,
-            circularity,
-            centroid,
-        });
+    parents
+        .iter()
+        .filter(|(id, _)| !set.is_hole(*id))
+        .map(|&(id, _)| {
+            let holes: Vec<ContourId> = parents
+                .iter()
+                .filter(|(h, p)| *p == Some(id) && set.is_hole(*h))
+                .map(|(h, _)| *h)
+                .collect();
+            measure_region(id, holes, |r| set.ring_points(r))
+        })
+        .collect()
+}
+
+/// The regions bounded by `rings` (id, is a hole, points), as [`regions`] measures them:
+/// each hole belongs to the smallest outer ring around it.
+pub fn regions_of_rings(rings: &[(u32, bool, &[Point])]) -> Vec<Region> {
+    let area = |pts: &[Point]| crate::geometry::signed_area(pts).abs();
+    rings
+        .iter()
+        .filter(|(_, hole, _)| !hole)
+        .map(|&(id, _, outer)| {
+            let holes: Vec<ContourId> = rings
+                .iter()
+                .filter(|(_, hole, pts)| *hole && !pts.is_empty())
+                .filter(|(_, _, pts)| {
+                    // The smallest outer ring around the hole's first point is its parent.
+                    let probe = pts[0];
+                    let around = |o: &[Point]| crate::geometry::winding_number(o, probe) != 0;
+                    around(outer)
+                        && !rings.iter().any(|&(j, h, o)| {
+                            !h && j != id && around(o) && area(o) < area(outer)
+                        })
+                })
+                .map(|&(h, _, _)| ContourId(h))
+                .collect();
+            let points = |r: ContourId| {
+                rings
+                    .iter()
+                    .find(|(i, _, _)| *i == r.0)
+                    .map_or(Vec::new(), |(_, _, p)| p.to_vec())
+            };
+            measure_region(ContourId(id), holes, points)
+        })
+        .collect()
+}
+
+/// Area, perimeter, circularity and centroid of outer ring `id` minus its `holes`.
+fn measure_region(
+    id: ContourId,
+    holes: Vec<ContourId>,
+    ring_points: impl Fn(ContourId) -> Vec<Point>,
+) -> Region {
+    let (mut area, mut m) = (0.0, Point::default());
+    let mut perimeter = 0.0;
+    for r in std::iter::once(id).chain(holes.iter().copied()) {
+        let pts = ring_points(r);
+        let (a, mr) = ring_moments(&pts);
+        area += a;
+        m = m + mr;
+        perimeter += ring_perimeter(&pts);
     }
-    out
+    let centroid = if area != 0.0 {
+        m * (1.0 / area)
+    } else {
+        Point::default()
+    };
+    let circularity = if perimeter > 0.0 {
+        4.0 * std::f64::consts::PI * area / (perimeter * perimeter)
+    } else {
+        0.0
+    };
+    Region {
+        id,
+        holes,
+        area,
+        perimeter,
+        circularity,
+        centroid,
+    }
 }
 
 /// Removes outer rings whose region is smaller than `min_area` (with everything inside

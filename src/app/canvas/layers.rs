@@ -142,6 +142,15 @@ pub(super) fn contours_layer(app: &mut TopoApp, painter: &egui::Painter, view: V
             ));
         }
     }
+    // The selected contour (Edit tool or object table) under a white halo.
+    if let Some(r) = app
+        .selected_contour
+        .and_then(|id| rec.rings.iter().find(|r| r.id == id))
+    {
+        let mut pts: Vec<Pos2> = r.points.iter().map(|&p| view.to_screen(p)).collect();
+        pts.push(pts[0]);
+        painter.add(egui::Shape::line(pts, Stroke::new(5.0, Color32::WHITE)));
+    }
     draw_rings(painter, view, &rec.rings, Vec2::ZERO);
 }
 
