@@ -714,3 +714,44 @@ fn the_object_table_is_linked_to_the_canvas() {
     h.step();
     assert_eq!(h.state().selected_contour, None);
 }
+
+/// Without a desktop portal a file dialog gives no path: the built-in path field takes
+/// a typed one (here: open an image, then export next to it under the image's name).
+#[test]
+fn the_path_field_stands_in_for_a_file_dialog() {
+    use topocontour::app::{ExportKind, PathPrompt, PathPurpose};
+    let mut h = harness(TopoApp::default());
+    h.step();
+    h.state_mut().path_prompt = Some(PathPrompt {
+        purpose: PathPurpose::OpenImage,
+        text: case_image("bridge_merge").display().to_string(),
+    });
+    h.step();
+    h.step();
+    h.get_by_label("OK").click();
+    h.step();
+    h.step();
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    assert_eq!(h.state().image_name, "image.png");
+    assert!(h.state().path_prompt.is_none());
+    assert_eq!(
+        ExportKind::Labels.default_name("image.png"),
+        "image.labels.tif"
+    );
+    let out = std::env::temp_dir().join(format!("topocontour-prompt-{}.svg", std::process::id()));
+    h.state_mut().send(Command::WrapBorder(4.0));
+    h.state_mut().send(Command::Step(2));
+    h.step();
+    h.state_mut().path_prompt = Some(PathPrompt {
+        purpose: PathPurpose::Export(ExportKind::Svg),
+        text: out.display().to_string(),
+    });
+    h.step();
+    h.step();
+    h.get_by_label("OK").click();
+    h.step();
+    h.step();
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    assert!(std::fs::read_to_string(&out).unwrap().contains("<svg"));
+    let _ = std::fs::remove_file(out);
+}

@@ -1,6 +1,7 @@
 //! What a widget can ask for ([`Command`]) and the one place commands change the app
 //! ([`TopoApp::apply`] → `apply_now`), each group of commands in its own handler.
 
+use super::path_prompt::PathPurpose;
 use super::{auto_contrast, Settings, TopoApp};
 use crate::contours::BroadPhaseKind;
 use crate::evolution::{find_seeds, ForceWeights, Modality, Mode, Polarity, Shape};
@@ -42,6 +43,17 @@ pub enum ExportKind {
 }
 
 impl ExportKind {
+    /// The file name an export of image `image` gets by default.
+    pub fn default_name(self, image: &str) -> String {
+        let stem = super::path_prompt::stem(image);
+        match self {
+            ExportKind::Mask => format!("{stem}.mask.png"),
+            ExportKind::Labels => format!("{stem}.labels.tif"),
+            ExportKind::Roi => format!("{stem}.rois.zip"),
+            _ => format!("{stem}.{}", self.extension()),
+        }
+    }
+
     /// The file extension of this kind.
     pub fn extension(self) -> &'static str {
         match self {
@@ -433,9 +445,7 @@ impl TopoApp {
                 }
                 match d.pick_file() {
                     Some(p) => self.apply_now(Command::OpenImage(p)),
-                    None => {
-                        self.notice = Some("no file chosen (is a desktop portal running?)".into())
-                    }
+                    None => self.prompt_path(PathPurpose::OpenImage, String::new()),
                 }
             }
             Command::Export(kind, path) => {
@@ -446,15 +456,16 @@ impl TopoApp {
                 }
             }
             Command::ExportDialog(kind) => {
+                let name = kind.default_name(&self.image_name);
                 let mut d = rfd::FileDialog::new()
                     .add_filter(kind.extension(), &[kind.extension()])
-                    .set_file_name(format!("contours.{}", kind.extension()));
+                    .set_file_name(&name);
                 if let Some(dir) = &self.settings.last_dir {
                     d = d.set_directory(dir);
                 }
                 match d.save_file() {
                     Some(p) => self.apply_now(Command::Export(kind, p)),
-                    None => self.notice = Some("export cancelled (no file chosen)".into()),
+                    None => self.prompt_path(PathPurpose::Export(kind), name),
                 }
             }
             Command::SessionDialog(save) => {
@@ -462,18 +473,20 @@ impl TopoApp {
                 if let Some(dir) = &self.settings.last_dir {
                     d = d.set_directory(dir);
                 }
+                let name = format!(
+                    "{}.session.json",
+                    super::path_prompt::stem(&self.image_name)
+                );
                 let chosen = if save {
-                    d.set_file_name(format!("{}.session.json", self.image_name))
-                        .save_file()
+                    d.set_file_name(&name).save_file()
                 } else {
                     d.pick_file()
                 };
                 match (chosen, save) {
                     (Some(p), true) => self.apply_now(Command::SaveSession(p)),
                     (Some(p), false) => self.apply_now(Command::OpenSession(p)),
-                    (None, _) => {
-                        self.notice = Some("no file chosen (is a desktop portal running?)".into())
-                    }
+                    (None, true) => self.prompt_path(PathPurpose::SaveSession, name),
+                    (None, false) => self.prompt_path(PathPurpose::OpenSession, String::new()),
                 }
             }
             Command::SaveSession(p) => match self.save_session(&p) {

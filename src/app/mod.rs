@@ -10,11 +10,13 @@ mod history;
 mod keys;
 mod objects;
 mod panels;
+mod path_prompt;
 mod run;
 mod settings;
 
 pub use command::{Command, ExportKind, Tool};
 pub use files::AppError;
+pub use path_prompt::{PathPrompt, PathPurpose};
 pub use run::{FrameRecord, RingView, Run};
 pub use settings::{auto_contrast, Settings};
 
@@ -74,6 +76,8 @@ pub struct TopoApp {
     pub selected_contour: Option<u32>,
     /// The object table's rows, measured once per frame shown.
     objects: objects::ObjectTable,
+    /// The built-in path field, when a file dialog gave no path.
+    pub path_prompt: Option<PathPrompt>,
 }
 
 impl Default for TopoApp {
@@ -103,6 +107,7 @@ impl Default for TopoApp {
             show_help: false,
             selected_contour: None,
             objects: objects::ObjectTable::default(),
+            path_prompt: None,
         }
     }
 }
@@ -338,6 +343,7 @@ impl TopoApp {
         let dt = ui.input(|i| i.stable_dt) as f64;
         self.keyboard(ui);
         self.help_ui(&ui.ctx().clone());
+        self.path_prompt_ui(&ui.ctx().clone());
         panels::top_bar(self, ui);
         panels::bottom_bar(self, ui);
         panels::side_panel(self, ui);

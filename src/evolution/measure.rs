@@ -73,9 +73,9 @@ pub fn regions_of_rings(rings: &[(u32, bool, &[Point])]) -> Vec<Region> {
                     let probe = pts[0];
                     let around = |o: &[Point]| crate::geometry::winding_number(o, probe) != 0;
                     around(outer)
-                        && !rings.iter().any(|&(j, h, o)| {
-                            !h && j != id && around(o) && area(o) < area(outer)
-                        })
+                        && !rings
+                            .iter()
+                            .any(|&(j, h, o)| !h && j != id && around(o) && area(o) < area(outer))
                 })
                 .map(|&(h, _, _)| ContourId(h))
                 .collect();
