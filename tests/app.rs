@@ -755,3 +755,57 @@ fn the_path_field_stands_in_for_a_file_dialog() {
     assert!(std::fs::read_to_string(&out).unwrap().contains("<svg"));
     let _ = std::fs::remove_file(out);
 }
+
+/// A TIFF stack opens on page 1 and says it holds more; another page keeps the shapes;
+/// the pixel size from the file reaches the CSV export.
+#[test]
+fn a_tiff_stack_opens_with_its_pages_and_pixel_size() {
+    use tiff::encoder::{colortype::Gray8, Rational, TiffEncoder};
+    use tiff::tags::ResolutionUnit;
+    let path =
+        std::env::temp_dir().join(format!("topocontour-app-stack-{}.tif", std::process::id()));
+    {
+        let mut enc = TiffEncoder::new(std::fs::File::create(&path).unwrap()).unwrap();
+        for k in 0..3u32 {
+            let data: Vec<u8> = (0..64 * 64u32)
+                .map(|i| if (i % 64) < 20 + 10 * k { 30 } else { 200 })
+                .collect();
+            let mut img = enc.new_image::<Gray8>(64, 64).unwrap();
+            img.resolution(ResolutionUnit::Centimeter, Rational { n: 10_000, d: 1 });
+            img.write_data(&data).unwrap();
+        }
+    }
+    let mut h = harness(TopoApp::default());
+    h.state_mut().send(Command::OpenImage(path.clone()));
+    h.step();
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    assert!(h.state().notice.as_deref().unwrap().contains("3 pages"));
+    assert_eq!(h.state().stack.pages, 3);
+    let pixel = h.state().stack.pixel.clone().expect("resolution read");
+    assert_eq!(pixel.unit, "cm");
+    assert!((pixel.size - 1e-4).abs() < 1e-12);
+    let mean = |a: &TopoApp| a.image.as_ref().unwrap().data.iter().sum::<f32>();
+    let first = mean(h.state());
+    h.state_mut().send(Command::WrapBorder(2.0));
+    h.state_mut().send(Command::SetPage(2));
+    h.step();
+    assert_eq!(h.state().stack.page, 2);
+    assert!(mean(h.state()) < first, "page 3 is darker");
+    assert_eq!(h.state().shapes.len(), 1, "shapes stay");
+    h.state_mut().send(Command::Step(3));
+    let csv =
+        std::env::temp_dir().join(format!("topocontour-app-stack-{}.csv", std::process::id()));
+    h.state_mut().send(Command::Export(
+        topocontour::app::ExportKind::Csv,
+        csv.clone(),
+    ));
+    h.step();
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert!(
+        text.lines().nth(1).unwrap().contains(",0.0001,\"cm\","),
+        "{text}"
+    );
+    let _ = std::fs::remove_file(path);
+    let _ = std::fs::remove_file(csv);
+}

@@ -234,7 +234,7 @@ fn svg_renders_like_the_mask_and_geojson_parses() {
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(
         lines[0],
-        "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes"
+        "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,pixel_size,unit,area_calibrated,perimeter_calibrated"
     );
     assert!(
         lines[1].starts_with("\"image.png\","),
@@ -688,4 +688,110 @@ fn replay_equals_segment() {
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("changed"));
+}
+
+/// A three-page TIFF stack with a resolution of 2 pixels per µm (as ImageJ writes it):
+/// the CLI says it holds three pages and segments page 1, `--page` picks another, a page
+/// past the end is one clear error; the CSV gives the pixel size and calibrated areas.
+#[test]
+fn tiff_stacks_and_pixel_size() {
+    use tiff::encoder::{colortype::Gray8, Rational, TiffEncoder};
+    use tiff::tags::ResolutionUnit;
+    let path = tmp("stack.tif");
+    {
+        let mut enc = TiffEncoder::new(std::fs::File::create(&path).unwrap()).unwrap();
+        // Page k: a dark disk of radius 10 + 5k on a bright background.
+        for k in 0..3u32 {
+            let (w, h) = (96u32, 96u32);
+            let r = 10.0 + 5.0 * k as f64;
+            let data: Vec<u8> = (0..w * h)
+                .map(|i| {
+                    let (x, y) = ((i % w) as f64 + 0.5 - 48.0, (i / w) as f64 + 0.5 - 48.0);
+                    if x.hypot(y) < r {
+                        40
+                    } else {
+                        210
+                    }
+                })
+                .collect();
+            let mut img = enc.new_image::<Gray8>(w, h).unwrap();
+            img.resolution(ResolutionUnit::None, Rational { n: 2, d: 1 });
+            img.encoder()
+                .write_tag(
+                    tiff::tags::Tag::ImageDescription,
+                    "ImageJ=1.54\nunit=micron\n",
+                )
+                .unwrap();
+            img.write_data(&data).unwrap();
+        }
+    }
+    let area = |page: Option<&str>| {
+        let csv = tmp(&format!("stack-{}.csv", page.unwrap_or("none")));
+        let mut args = vec![
+            "segment".to_string(),
+            path.display().to_string(),
+            "--seed".into(),
+            "48,48,4".into(),
+            "--object".into(),
+            "dark".into(),
+            "--csv".into(),
+            csv.display().to_string(),
+        ];
+        if let Some(p) = page {
+            args.extend(["--page".into(), p.into()]);
+        }
+        let out = bin().args(&args).output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = std::fs::read_to_string(&csv).unwrap();
+        let row: Vec<String> = text
+            .lines()
+            .nth(1)
+            .unwrap()
+            .split(',')
+            .map(String::from)
+            .collect();
+        (row, String::from_utf8_lossy(&out.stderr).into_owned())
+    };
+    let (row, stderr) = area(None);
+    assert!(stderr.contains("holds 3 pages"), "{stderr}");
+    let a1: f64 = row[2].parse().unwrap();
+    assert!(
+        (a1 - std::f64::consts::PI * 100.0).abs() < 0.1 * std::f64::consts::PI * 100.0,
+        "{a1}"
+    );
+    assert_eq!(row[8], "0.5");
+    assert_eq!(row[9], "\"µm\"");
+    let calibrated: f64 = row[10].parse().unwrap();
+    assert!(
+        (calibrated - a1 * 0.25).abs() < 1e-6 * a1,
+        "{calibrated} vs {a1}"
+    );
+    let (row, stderr) = area(Some("3"));
+    assert!(!stderr.contains("pages"), "{stderr}");
+    let a3: f64 = row[2].parse().unwrap();
+    assert!(
+        (a3 - std::f64::consts::PI * 400.0).abs() < 0.1 * std::f64::consts::PI * 400.0,
+        "{a3}"
+    );
+    let out = bin()
+        .args([
+            "segment",
+            path.to_str().unwrap(),
+            "--seed",
+            "48,48,4",
+            "--object",
+            "dark",
+            "--page",
+            "4",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("no page 4"), "{err}");
 }

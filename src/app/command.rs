@@ -6,7 +6,6 @@ use super::{auto_contrast, Settings, TopoApp};
 use crate::contours::BroadPhaseKind;
 use crate::evolution::{find_seeds, ForceWeights, Modality, Mode, Polarity, Shape};
 use crate::geometry::Point;
-use crate::io::load_image;
 use std::path::{Path, PathBuf};
 
 /// What a click on the canvas does.
@@ -126,6 +125,10 @@ pub enum Command {
         /// The step, in grid spacings.
         step: f64,
     },
+    /// Show page `n` (0-based) of a multi-page image; shapes stay.
+    SetPage(usize),
+    /// The physical size of a pixel (none: unknown).
+    SetPixelSize(Option<crate::io::PixelSize>),
     /// Put the force weights, step and minimum area back to their defaults.
     ResetParameters,
     /// Save the image reference, shapes, parameters and the frame on screen as a session.
@@ -220,6 +223,8 @@ impl TopoApp {
             | Command::SetCompare(..)
             | Command::SetBroadPhase(..)
             | Command::SetForces { .. }
+            | Command::SetPage(..)
+            | Command::SetPixelSize(..)
             | Command::ResetParameters => self.set_parameter(c),
             Command::OpenImage(..)
             | Command::OpenDialog
@@ -409,6 +414,22 @@ impl TopoApp {
                 self.reset_run();
             }
             Command::SetForces { weights, step } => self.set_forces(weights, step),
+            Command::SetPixelSize(p) => self.stack.pixel = p,
+            Command::SetPage(n) => {
+                let Some(path) = self.image_path.clone() else {
+                    return;
+                };
+                match crate::io::load_image_page(&path, n) {
+                    Ok((f, _)) => {
+                        // Same file, another page: the shapes and contrast stay.
+                        self.image = Some(std::sync::Arc::new(f));
+                        self.texture = None;
+                        self.stack.page = n;
+                        self.reset_run();
+                    }
+                    Err(e) => self.error = Some(e.into()),
+                }
+            }
             Command::ResetParameters => {
                 if let Some(img) = &self.image {
                     self.settings.contrast = auto_contrast(img);
@@ -424,8 +445,8 @@ impl TopoApp {
     /// Images, exports and sessions (files chosen in a dialog, or given).
     fn files(&mut self, c: Command) {
         match c {
-            Command::OpenImage(p) => match load_image(&p) {
-                Ok(f) => {
+            Command::OpenImage(p) => match crate::io::load_image_page(&p, 0) {
+                Ok((f, info)) => {
                     let name = p
                         .file_name()
                         .map(|n| n.to_string_lossy().into_owned())
@@ -434,6 +455,17 @@ impl TopoApp {
                     self.set_image(f, name);
                     self.image_path = Some(p);
                     self.error = None;
+                    if info.pages > 1 {
+                        self.notice = Some(format!(
+                            "{} holds {} pages: page 1 is shown (choose another under Image)",
+                            self.image_name, info.pages
+                        ));
+                    }
+                    self.stack = super::ImageStack {
+                        pages: info.pages,
+                        page: 0,
+                        pixel: info.pixel_size,
+                    };
                 }
                 Err(e) => self.error = Some(e.into()),
             },

@@ -83,7 +83,8 @@ impl TopoApp {
             path: abs.clone(),
             source,
         })?
-        .with_edits(&edits);
+        .with_edits(&edits)
+        .with_page(self.stack.page);
         OutputFiles::prepare(Some(&abs), &[path])?.commit(vec![s.to_json().into_bytes()])?;
         Ok(())
     }
@@ -102,6 +103,12 @@ impl TopoApp {
         })?;
         if crc != s.image.crc32 {
             return Err(AppError::ImageChanged(image_path));
+        }
+        if s.page > 0 {
+            self.apply_now(Command::SetPage(s.page));
+            if let Some(e) = self.error.take() {
+                return Err(e);
+            }
         }
         let p = &s.params;
         self.settings.polarity = p.polarity;
@@ -152,7 +159,7 @@ impl TopoApp {
         run.rewind(self.shown.min(run.history.len() - 1));
         let ev = &run.evolver;
         let set = ev.filtered_contours(self.settings.min_area);
-        let out = Outputs::of(ev, &set, &self.image_name);
+        let out = Outputs::of(ev, &set, &self.image_name).with_pixel_size(self.stack.pixel.clone());
         let bytes = match kind {
             ExportKind::Svg => out.svg().into_bytes(),
             ExportKind::GeoJson => out.geojson().into_bytes(),

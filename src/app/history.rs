@@ -17,6 +17,7 @@ pub struct Snapshot {
     pub image: Option<Arc<crate::evolution::Field>>,
     pub image_name: String,
     pub image_path: Option<std::path::PathBuf>,
+    pub stack: super::ImageStack,
     pub shapes: Vec<Shape>,
     pub selected: Option<usize>,
     pub settings: Settings,
@@ -58,6 +59,8 @@ impl History {
                 | Command::SetCompare(_)
                 | Command::Reset
                 | Command::ResetParameters
+                | Command::SetPage(_)
+                | Command::SetPixelSize(_)
                 | Command::SetForces { .. }
                 | Command::HandMove { .. }
                 | Command::DeleteContour(_)
@@ -76,6 +79,7 @@ impl History {
             Command::HandMove { vertex, .. } => Some((true, *vertex as usize)),
             // A slider drag is one step too.
             Command::SetForces { .. } => Some((true, usize::MAX)),
+            Command::SetPixelSize(_) => Some((true, usize::MAX - 1)),
             _ => None,
         };
         if dragging.is_some() && self.moving == dragging {

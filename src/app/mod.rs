@@ -78,6 +78,20 @@ pub struct TopoApp {
     objects: objects::ObjectTable,
     /// The built-in path field, when a file dialog gave no path.
     pub path_prompt: Option<PathPrompt>,
+    /// The page of a stack on screen, and the pixel size.
+    pub stack: ImageStack,
+}
+
+/// Where the image on screen sits in its file, and how large its pixels are.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ImageStack {
+    /// Pages in the file (1 for most images; a TIFF stack holds several).
+    pub pages: usize,
+    /// The page on screen (0-based).
+    pub page: usize,
+    /// The physical size of a pixel: from the file, or set by the user (exports give
+    /// calibrated measurements with it).
+    pub pixel: Option<crate::io::PixelSize>,
 }
 
 impl Default for TopoApp {
@@ -108,6 +122,7 @@ impl Default for TopoApp {
             selected_contour: None,
             objects: objects::ObjectTable::default(),
             path_prompt: None,
+            stack: ImageStack::default(),
         }
     }
 }
@@ -119,6 +134,7 @@ impl TopoApp {
         let field =
             crate::io::decode_image(SAMPLE_PNG, "cells.png").expect("bundled sample decodes");
         app.set_image(field, "cells.png (sample)".into());
+        app.stack.pages = 1;
         app.apply_now(Command::WrapBorder(6.0));
         app
     }
@@ -279,6 +295,7 @@ impl TopoApp {
             image: self.image.clone(),
             image_name: self.image_name.clone(),
             image_path: self.image_path.clone(),
+            stack: self.stack.clone(),
             shapes: self.shapes.clone(),
             selected: self.selected,
             settings: self.settings.clone(),
@@ -300,6 +317,7 @@ impl TopoApp {
         self.image = s.image;
         self.image_name = s.image_name;
         self.image_path = s.image_path;
+        self.stack = s.stack;
         self.shapes = s.shapes;
         self.selected = s.selected;
         self.settings = s.settings;

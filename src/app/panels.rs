@@ -376,6 +376,7 @@ pub fn side_panel(app: &mut TopoApp, ui: &mut egui::Ui) {
                             "crossing search: vertex bins or staggered hashing (same contours, different speed)",
                         );
                 });
+                image_info_ui(app, ui);
                 objects_ui(app, ui);
                 egui::CollapsingHeader::new("Event log")
                     .default_open(true)
@@ -502,5 +503,50 @@ fn objects_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
             if let Some(id) = clicked {
                 app.send(Command::SelectContour(id));
             }
+        });
+}
+
+/// The image: its size, the page of a stack, the pixel size.
+fn image_info_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
+    let Some(image) = app.image.clone() else {
+        return;
+    };
+    egui::CollapsingHeader::new("Image")
+        .default_open(app.stack.pages > 1)
+        .show(ui, |ui| {
+            ui.label(format!(
+                "{}: {} × {} pixels",
+                app.image_name, image.width, image.height
+            ));
+            if app.stack.pages > 1 {
+                let mut page = app.stack.page + 1;
+                let slider = egui::Slider::new(&mut page, 1..=app.stack.pages).text("page");
+                if ui
+                    .add(slider)
+                    .on_hover_text("the page of the stack to segment (shapes stay; the run starts again)")
+                    .changed()
+                {
+                    app.send(Command::SetPage(page - 1));
+                }
+            }
+            ui.horizontal(|ui| {
+                let known = app.stack.pixel.clone();
+                let mut size = known.as_ref().map_or(0.0, |p| p.size);
+                let mut unit = known.as_ref().map_or("µm".to_string(), |p| p.unit.clone());
+                let a = ui
+                    .add(
+                        egui::DragValue::new(&mut size)
+                            .range(0.0..=1e6)
+                            .speed(0.001)
+                            .max_decimals(4)
+                            .prefix("pixel size "),
+                    )
+                    .on_hover_text("side of a pixel (0: unknown); read from the TIFF when it records one; exports add calibrated area and perimeter");
+                let b = ui.add(egui::TextEdit::singleline(&mut unit).desired_width(40.0));
+                if a.changed() || b.changed() {
+                    let pixel = (size > 0.0).then_some(crate::io::PixelSize { size, unit });
+                    app.send(Command::SetPixelSize(pixel));
+                }
+            });
         });
 }

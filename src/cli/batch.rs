@@ -159,12 +159,13 @@ fn one_image(img: &Path, a: &BatchArgs) -> ImageResult {
         .collect();
     let refs: Vec<&Path> = paths.iter().map(PathBuf::as_path).collect();
     let files = OutputFiles::prepare(Some(img), &refs).map_err(|e| bad(e.to_string()))?;
-    let (ev, image, _) = evolve(img, &a.run)?;
+    let run = evolve(img, &a.run)?;
+    let (ev, image) = (&run.ev, &run.image);
     let name = file_name(img);
-    let out = Outputs::of(&ev, ev.contours(), &name);
+    let out = Outputs::of(ev, ev.contours(), &name).with_pixel_size(run.pixel.clone());
     let wanted: Vec<(Format, &Path)> = a.formats.iter().copied().zip(refs).collect();
-    write_outputs(files, &wanted, &out, &image, None)?;
-    Ok(summary_rows(&stem, &out, &image))
+    write_outputs(files, &wanted, &out, image, None)?;
+    Ok(summary_rows(&stem, &out, image))
 }
 
 /// One CSV row per region: the measurements of `Outputs::csv` and the mean intensity

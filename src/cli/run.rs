@@ -5,7 +5,7 @@ use super::{bad, Failure};
 use crate::contours::BroadPhaseKind;
 use crate::evolution::{find_seeds, Evolver, Field, Modality, Mode, Params, Polarity, Shape};
 use crate::geometry::Point;
-use crate::io::load_image;
+use crate::io::{load_image_page, PixelSize};
 use clap::Args;
 use std::path::Path;
 
@@ -47,6 +47,16 @@ pub struct RunSettings {
     /// Broad phase of the crossing search: vertex bins or staggered hashing (same result).
     #[arg(long, value_enum, default_value = "bins")]
     pub broad_phase: BroadPhaseKind,
+    /// The page of a multi-page TIFF (a stack) to segment, from 1.
+    #[arg(long, value_name = "N")]
+    pub page: Option<usize>,
+    /// Side of a pixel in --unit (default: from the TIFF's resolution, if it has one);
+    /// the CSV then gives calibrated areas and perimeters too.
+    #[arg(long, value_name = "SIZE")]
+    pub pixel_size: Option<f64>,
+    /// The unit of --pixel-size.
+    #[arg(long, value_name = "UNIT", default_value = "µm")]
+    pub unit: String,
 }
 
 impl RunSettings {
@@ -64,6 +74,9 @@ impl RunSettings {
             max_frames: None,
             min_area: None,
             broad_phase: BroadPhaseKind::Bins,
+            page: None,
+            pixel_size: None,
+            unit: "µm".into(),
         }
     }
 }
@@ -184,13 +197,47 @@ pub fn params_for(a: &RunSettings) -> Result<Params, Failure> {
     Ok(p)
 }
 
-/// Loads `path` and evolves the contours to the end; returns the evolver, the image and
-/// the shapes it started from (automatic seeds included).
-pub(super) fn evolve(
-    path: &Path,
-    a: &RunSettings,
-) -> Result<(Evolver, Field, Vec<Shape>), Failure> {
-    let image = load_image(path).map_err(|e| bad(e.to_string()))?;
+/// A finished evolution with what it started from.
+pub(super) struct Evolved {
+    /// The evolver, run to its end, clutter filtered.
+    pub ev: Evolver,
+    /// The image.
+    pub image: Field,
+    /// The shapes it started from (automatic seeds included).
+    pub shapes: Vec<Shape>,
+    /// The pixel size (the flag's, or the file's).
+    pub pixel: Option<PixelSize>,
+    /// The page segmented (0-based).
+    pub page: usize,
+}
+
+/// Loads `path` (page `--page` of a stack) and evolves the contours to the end.
+pub(super) fn evolve(path: &Path, a: &RunSettings) -> Result<Evolved, Failure> {
+    let page = match a.page {
+        Some(0) => return Err(bad("--page counts from 1")),
+        Some(n) => n - 1,
+        None => 0,
+    };
+    let (image, info) = load_image_page(path, page).map_err(|e| bad(e.to_string()))?;
+    if a.page.is_none() && info.pages > 1 {
+        super::note(&format!(
+            "note: {} holds {} pages; segmenting page 1 (choose another with --page)",
+            path.display(),
+            info.pages
+        ));
+    }
+    let pixel = match a.pixel_size {
+        Some(size) if !(size.is_finite() && size > 0.0) => {
+            return Err(bad(format!(
+                "--pixel-size must be a number > 0, got {size}"
+            )))
+        }
+        Some(size) => Some(PixelSize {
+            size,
+            unit: a.unit.clone(),
+        }),
+        None => info.pixel_size,
+    };
     let mut shapes = init_shapes(a, image.width, image.height)?;
     let params = params_for(a)?;
     if a.auto_seeds {
@@ -210,7 +257,13 @@ pub(super) fn evolve(
     let mut ev = Evolver::new(&image, &shapes, params).map_err(|e| bad(e.to_string()))?;
     ev.run();
     ev.filter_clutter();
-    Ok((ev, image, shapes))
+    Ok(Evolved {
+        ev,
+        image,
+        shapes,
+        pixel,
+        page,
+    })
 }
 
 /// The file name of `path` (what outputs record of the image).

@@ -1,7 +1,7 @@
 //! `topocontour segment IMAGE …`: one image, the outputs the flags name, all written or
 //! none; and the evaluation case folders' `case.json`.
 
-use super::run::{evolve, file_name, RunSettings};
+use super::run::{evolve, file_name, Evolved, RunSettings};
 use super::{bad, note, Failure};
 use crate::evolution::{Evolver, Modality, Polarity};
 use crate::io::session::Session;
@@ -164,9 +164,15 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
     let mut paths: Vec<&Path> = wanted.iter().map(|&(_, p)| p).collect();
     paths.extend(a.save_session.as_deref());
     let files = OutputFiles::prepare(Some(&a.image), &paths).map_err(|e| bad(e.to_string()))?;
-    let (ev, image, shapes) = evolve(&a.image, &a.run)?;
+    let Evolved {
+        ev,
+        image,
+        shapes,
+        pixel,
+        page,
+    } = evolve(&a.image, &a.run)?;
     let name = file_name(&a.image);
-    let out = Outputs::of(&ev, ev.contours(), &name);
+    let out = Outputs::of(&ev, ev.contours(), &name).with_pixel_size(pixel);
     if out.held > 0 {
         // The user asked for fixed topology; say where it mattered.
         note(&format!(
@@ -195,7 +201,8 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
                 ev.frames(),
                 true,
             )
-            .map_err(|e| bad(format!("cannot read {}: {e}", a.image.display())))?;
+            .map_err(|e| bad(format!("cannot read {}: {e}", a.image.display())))?
+            .with_page(page);
             Some(s.to_json().into_bytes())
         }
         None => None,

@@ -4,6 +4,7 @@
 use crate::contours::{ContourId, ContourSet};
 use crate::evolution::{regions, Evolver, FrameEvent};
 use crate::geometry::Point;
+use crate::io::PixelSize;
 use serde_json::json;
 
 /// The finished segmentation, ready to export.
@@ -26,6 +27,8 @@ pub struct Outputs<'a> {
     pub params: &'a crate::evolution::Params,
     /// Places where a topology-keeping engine held fronts apart (0 when adaptive).
     pub held: usize,
+    /// The physical size of a pixel, if known: the CSV adds calibrated measurements.
+    pub pixel: Option<PixelSize>,
 }
 
 impl<'a> Outputs<'a> {
@@ -43,7 +46,14 @@ impl<'a> Outputs<'a> {
             image: name,
             params: ev.params(),
             held: ev.held_contacts(),
+            pixel: None,
         }
+    }
+
+    /// The same outputs with a known pixel size (or none).
+    pub fn with_pixel_size(mut self, pixel: Option<PixelSize>) -> Self {
+        self.pixel = pixel;
+        self
     }
 }
 
@@ -272,12 +282,25 @@ impl Outputs<'_> {
 
     /// Measurements, one row per region.
     pub fn csv(&self) -> String {
-        let mut s =
-            String::from("image,id,area,perimeter,circularity,centroid_x,centroid_y,holes\n");
+        let mut s = String::from(
+            "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,pixel_size,unit,area_calibrated,perimeter_calibrated\n",
+        );
         let image = csv_quoted(self.image);
+        // Calibrated columns stay empty without a pixel size.
+        let (size, unit) = match &self.pixel {
+            Some(p) => (format!("{}", p.size), csv_quoted(&p.unit)),
+            None => (String::new(), String::new()),
+        };
         for r in regions(self.set) {
+            let (area, perimeter) = match &self.pixel {
+                Some(p) => (
+                    format!("{:e}", r.area * p.size * p.size),
+                    format!("{:e}", r.perimeter * p.size),
+                ),
+                None => (String::new(), String::new()),
+            };
             s.push_str(&format!(
-                "{image},{},{},{},{},{},{},{}\n",
+                "{image},{},{},{},{},{},{},{},{size},{unit},{area},{perimeter}\n",
                 r.id,
                 fmt(r.area),
                 fmt(r.perimeter),

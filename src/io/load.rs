@@ -80,8 +80,42 @@ pub enum LoadError {
 /// room for its headers.
 pub const MAX_FILE_BYTES: u64 = MAX_PIXELS * 8 + (1 << 20);
 
-/// Reads an image file as luminance.
+/// Reads an image file as luminance (the first page of a multi-page TIFF).
 pub fn load_image(path: &Path) -> Result<Field, LoadError> {
+    let bytes = read_file(path)?;
+    decode_image(&bytes, &path.display().to_string())
+}
+
+/// What a file says about its image besides the pixels.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ImageInfo {
+    /// Images in the file (TIFF stacks hold several; 1 otherwise).
+    pub pages: usize,
+    /// Physical size of a pixel, if the file records one (TIFF).
+    pub pixel_size: Option<super::tiff_info::PixelSize>,
+}
+
+/// Reads page `page` (0-based) of an image file as luminance, with what the file says
+/// about it (pages, pixel size).
+pub fn load_image_page(path: &Path, page: usize) -> Result<(Field, ImageInfo), LoadError> {
+    let bytes = read_file(path)?;
+    let name = path.display().to_string();
+    let (pages, pixel_size) = super::tiff_info::tiff_info(&bytes).unwrap_or((1, None));
+    let field = if page == 0 {
+        decode_image(&bytes, &name)?
+    } else if page < pages {
+        super::tiff_info::decode_page(&bytes, &name, page)?
+    } else {
+        return Err(LoadError::Decode {
+            path: name,
+            reason: format!("there is no page {} (the file holds {pages})", page + 1),
+        });
+    };
+    Ok((field, ImageInfo { pages, pixel_size }))
+}
+
+/// The bytes of a regular file no larger than [`MAX_FILE_BYTES`].
+fn read_file(path: &Path) -> Result<Vec<u8>, LoadError> {
     let name = path.display().to_string();
     let io = |source| LoadError::Io {
         path: name.clone(),
@@ -104,7 +138,7 @@ pub fn load_image(path: &Path) -> Result<Field, LoadError> {
         &mut bytes,
     )
     .map_err(io)?;
-    decode_image(&bytes, &name)
+    Ok(bytes)
 }
 
 /// Opens without blocking: on a FIFO a plain open waits for a writer.
@@ -174,7 +208,7 @@ fn jpeg_is_complete(b: &[u8]) -> bool {
     false
 }
 
-fn check_size(path: &str, width: u32, height: u32) -> Result<(), LoadError> {
+pub(crate) fn check_size(path: &str, width: u32, height: u32) -> Result<(), LoadError> {
     if width == 0 || height == 0 {
         return Err(LoadError::Empty {
             path: path.into(),

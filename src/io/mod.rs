@@ -5,7 +5,9 @@ pub mod export;
 pub mod load;
 pub mod roi;
 pub mod session;
+pub mod tiff_info;
 
 pub use atomic::{write_atomic, OutputError, OutputFiles};
 pub use export::Outputs;
-pub use load::{decode_image, load_image, LoadError};
+pub use load::{decode_image, load_image, load_image_page, ImageInfo, LoadError};
+pub use tiff_info::PixelSize;

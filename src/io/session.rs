@@ -52,6 +52,9 @@ pub struct Session {
     /// The user's interventions (force changes, hand drags, deletions) at their frames.
     #[serde(default)]
     pub edits: Vec<Edit>,
+    /// The page of a multi-page TIFF the run segmented (0-based).
+    #[serde(default)]
+    pub page: usize,
 }
 
 /// Why a session cannot be used.
@@ -100,12 +103,19 @@ impl Session {
             frames,
             finished,
             edits: Vec::new(),
+            page: 0,
         })
     }
 
     /// The session with the user's `edits` (the parameters are the run's first ones).
     pub fn with_edits(mut self, edits: &[Edit]) -> Self {
         self.edits = edits.to_vec();
+        self
+    }
+
+    /// The session of page `page` (0-based) of a multi-page TIFF.
+    pub fn with_page(mut self, page: usize) -> Self {
+        self.page = page;
         self
     }
 
@@ -148,7 +158,7 @@ impl Session {
     /// the session did; returns the evolver and the image.
     pub fn replay(&self, session_path: &Path) -> Result<(Evolver, Field), SessionError> {
         let path = self.image_path(session_path);
-        let image = crate::io::load_image(&path)
+        let (image, _) = crate::io::load_image_page(&path, self.page)
             .map_err(|e| SessionError::Image(path.clone(), e.to_string()))?;
         let crc =
             file_crc32(&path).map_err(|e| SessionError::Image(path.clone(), e.to_string()))?;

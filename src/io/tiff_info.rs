@@ -1,0 +1,126 @@
+//! What a TIFF says beyond its first image: how many pages (images) it holds — a stack
+//! or a time series from a microscope — and the size of a pixel. Pages after the first
+//! are decoded here (the image crate reads the first only).
+//!
+//! Pixel size: ImageJ writes XResolution as pixels per unit and the unit in the
+//! ImageDescription (`unit=micron`); other writers use ResolutionUnit (inch or cm). A
+//! resolution without a unit means nothing physical and is ignored.
+
+use super::load::LoadError;
+use crate::evolution::Field;
+use std::io::Cursor;
+use tiff::decoder::ifd::Value;
+use tiff::decoder::{Decoder, DecodingResult, Limits};
+use tiff::tags::Tag;
+use tiff::ColorType;
+
+/// Pages read at most when counting (a malformed chain of images must not loop).
+const MAX_PAGES: usize = 100_000;
+
+/// The physical size of a pixel.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct PixelSize {
+    /// Side of a pixel, in `unit`.
+    pub size: f64,
+    /// The unit, as written (µm, mm, cm, …).
+    pub unit: String,
+}
+
+/// Pages and pixel size of a TIFF file's bytes (`None`: not a TIFF).
+pub fn tiff_info(bytes: &[u8]) -> Option<(usize, Option<PixelSize>)> {
+    let mut dec = Decoder::new(Cursor::new(bytes)).ok()?;
+    let pixel = pixel_size(&mut dec);
+    let mut pages = 1;
+    while dec.more_images() && pages < MAX_PAGES && dec.next_image().is_ok() {
+        pages += 1;
+    }
+    Some((pages, pixel))
+}
+
+fn pixel_size(dec: &mut Decoder<Cursor<&[u8]>>) -> Option<PixelSize> {
+    let per_unit = match dec.find_tag(Tag::XResolution).ok()?? {
+        Value::Rational(n, d) if d != 0 => n as f64 / d as f64,
+        Value::Double(v) => v,
+        Value::Float(v) => v as f64,
+        _ => return None,
+    };
+    if !(per_unit.is_finite() && per_unit > 0.0) {
+        return None;
+    }
+    let described = dec
+        .get_tag_ascii_string(Tag::ImageDescription)
+        .ok()
+        .and_then(|d| {
+            d.lines()
+                .find_map(|l| l.strip_prefix("unit=").map(|u| u.trim().to_string()))
+        });
+    let unit = match described.as_deref() {
+        Some("micron" | "um" | "\\u00B5m" | "µm") => "µm".to_string(),
+        Some(u) if !u.is_empty() && u != "pixel" => u.to_string(),
+        _ => match dec.find_tag_unsigned::<u16>(Tag::ResolutionUnit).ok()? {
+            Some(2) => "inch".into(),
+            Some(3) => "cm".into(),
+            _ => return None,
+        },
+    };
+    Some(PixelSize {
+        size: 1.0 / per_unit,
+        unit,
+    })
+}
+
+/// Decodes page `page` (0-based) of a TIFF as luminance in [0, 1].
+pub fn decode_page(bytes: &[u8], name: &str, page: usize) -> Result<Field, LoadError> {
+    let err = |reason: String| LoadError::Decode {
+        path: name.to_string(),
+        reason,
+    };
+    let mut dec = Decoder::new(Cursor::new(bytes))
+        .map_err(|e| err(e.to_string()))?
+        .with_limits(Limits::default());
+    dec.seek_to_image(page)
+        .map_err(|e| err(format!("page {} of the file: {e}", page + 1)))?;
+    let (w, h) = dec.dimensions().map_err(|e| err(e.to_string()))?;
+    super::load::check_size(name, w, h)?;
+    let colour = dec.colortype().map_err(|e| err(e.to_string()))?;
+    let channels = match colour {
+        ColorType::Gray(_) => 1,
+        ColorType::RGB(_) => 3,
+        ColorType::RGBA(_) => 4,
+        other => {
+            return Err(err(format!(
+                "page {}: {other:?} pixels are not supported",
+                page + 1
+            )))
+        }
+    };
+    let values: Vec<f32> = match dec.read_image().map_err(|e| err(e.to_string()))? {
+        DecodingResult::U8(v) => v.iter().map(|&x| x as f32 / 255.0).collect(),
+        DecodingResult::U16(v) => v.iter().map(|&x| x as f32 / 65535.0).collect(),
+        DecodingResult::F32(v) => v.iter().map(|&x| x.clamp(0.0, 1.0)).collect(),
+        _ => {
+            return Err(err(format!(
+                "page {}: this sample format is not supported",
+                page + 1
+            )))
+        }
+    };
+    let n = w as usize * h as usize;
+    if values.len() < n * channels {
+        return Err(err(format!(
+            "page {} holds fewer samples than its size",
+            page + 1
+        )));
+    }
+    // Rec. 709 luma, as the first page gets from the image crate.
+    let data = (0..n)
+        .map(|i| match channels {
+            1 => values[i],
+            _ => {
+                let p = &values[i * channels..];
+                0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]
+            }
+        })
+        .collect();
+    Ok(Field::new(w as usize, h as usize, data))
+}
