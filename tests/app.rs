@@ -809,3 +809,45 @@ fn a_tiff_stack_opens_with_its_pages_and_pixel_size() {
     let _ = std::fs::remove_file(path);
     let _ = std::fs::remove_file(csv);
 }
+
+/// A brush stroke from inside one disc towards the other pushes its boundary out until
+/// the two merge (logged as an event); the whole stroke is one undo step.
+#[test]
+fn a_brush_stroke_merges_and_undoes_as_one_step() {
+    use topocontour::{Point, TopologyEvent};
+    let mut app = bright_bridge_with_seeds(&[(40.0, 64.0, 10.0), (75.0, 64.0, 10.0)]);
+    app.send(Command::SetTool(topocontour::app::Tool::Brush));
+    app.send(Command::Step(1));
+    app.send(Command::SeekFrame(0));
+    let mut h = harness(app);
+    h.step();
+    let count = |h: &Harness<'_, TopoApp>| {
+        h.state()
+            .run
+            .as_ref()
+            .unwrap()
+            .evolver
+            .contours()
+            .contour_count()
+    };
+    assert_eq!(count(&h), 2);
+    for k in 0..5 {
+        let x = 40.0 + 4.0 * k as f64;
+        h.state_mut().send(Command::Brush {
+            from: Point::new(x, 64.0),
+            to: Point::new(x + 4.0, 64.0),
+            radius: 7.0,
+            stroke: 1,
+        });
+        h.step();
+    }
+    assert_eq!(count(&h), 1, "merged");
+    assert!(h
+        .state()
+        .log
+        .iter()
+        .any(|(_, e)| matches!(e, TopologyEvent::Merge { .. })));
+    h.state_mut().send(Command::Undo);
+    h.step();
+    assert_eq!(count(&h), 2, "one undo takes the whole stroke back");
+}

@@ -242,7 +242,13 @@ fn svg_renders_like_the_mask_and_geojson_parses() {
         lines[1]
     );
     assert_eq!(lines.len(), 2);
-    assert!(lines[1].ends_with(",2"));
+    let fields: Vec<&str> = lines[1].split(',').collect();
+    assert_eq!(fields[7], "2", "two holes");
+    assert_eq!(
+        fields[8..],
+        ["", "", "", ""],
+        "no pixel size: no calibration"
+    );
 }
 
 fn expect_bad(args: &[&str], needle: &str) {

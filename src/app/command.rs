@@ -22,6 +22,9 @@ pub enum Tool {
     /// Edit the contours by hand: drag a vertex (through the topology core), click to
     /// select a contour, Delete removes it.
     Edit,
+    /// Push contours with a disc: from inside a region its boundary moves out, from
+    /// outside it moves in (merges, splits and holes happen exactly).
+    Brush,
 }
 
 /// What an export writes.
@@ -153,6 +156,17 @@ pub enum Command {
         /// How far a vertex may be, in image pixels.
         tol: f64,
     },
+    /// Hand edit: a brush stroke of `radius` from `from` to `to` on the frame on screen.
+    Brush {
+        /// Where the brush's centre was.
+        from: Point,
+        /// Where it is now.
+        to: Point,
+        /// The brush's radius, pixels.
+        radius: f64,
+        /// Which stroke (press) this is part of: each stroke is one undo step.
+        stroke: u32,
+    },
     /// Hand edit: delete the contour `id` of the frame on screen (with its holes).
     DeleteContour(u32),
     /// Select a contour of the frame on screen to see its measurements (or none).
@@ -200,6 +214,7 @@ impl TopoApp {
         }
         match c {
             Command::HandMove { .. }
+            | Command::Brush { .. }
             | Command::GrabVertex { .. }
             | Command::DeleteContour(..)
             | Command::SelectContour(..) => self.hand_edit(c),
@@ -251,6 +266,17 @@ impl TopoApp {
                     });
                     // The drag goes on with the vertex that leads now.
                     self.canvas.set_drag_lead(lead);
+                    self.log.retain(|(f, _)| *f <= at);
+                    self.log.extend(events.into_iter().map(|e| (at, e)));
+                }
+            }
+            Command::Brush {
+                from, to, radius, ..
+            } => {
+                if self.ensure_run() {
+                    let at = self.shown;
+                    let run = self.run.as_mut().expect("ensured");
+                    let events = run.edit_at(at, |ev| ev.brush(from, to, radius));
                     self.log.retain(|(f, _)| *f <= at);
                     self.log.extend(events.into_iter().map(|e| (at, e)));
                 }

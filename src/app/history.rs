@@ -34,7 +34,7 @@ pub struct History {
     future: Vec<Snapshot>,
     /// What the last undo step dragged (a shape, or a contour vertex when true): further
     /// moves of it join that step.
-    moving: Option<(bool, usize)>,
+    moving: Option<(u8, usize)>,
 }
 
 /// Steps kept: runs can be large.
@@ -63,6 +63,7 @@ impl History {
                 | Command::SetPixelSize(_)
                 | Command::SetForces { .. }
                 | Command::HandMove { .. }
+                | Command::Brush { .. }
                 | Command::DeleteContour(_)
         )
     }
@@ -75,11 +76,13 @@ impl History {
         }
         // A drag (of a shape, or of a contour vertex) is one step.
         let dragging = match c {
-            Command::MoveShape { index, .. } => Some((false, *index)),
-            Command::HandMove { vertex, .. } => Some((true, *vertex as usize)),
+            Command::MoveShape { index, .. } => Some((0, *index)),
+            Command::HandMove { vertex, .. } => Some((1, *vertex as usize)),
             // A slider drag is one step too.
-            Command::SetForces { .. } => Some((true, usize::MAX)),
-            Command::SetPixelSize(_) => Some((true, usize::MAX - 1)),
+            Command::SetForces { .. } => Some((2, 0)),
+            Command::SetPixelSize(_) => Some((3, 0)),
+            // A brush stroke (one press) is one step.
+            Command::Brush { stroke, .. } => Some((4, *stroke as usize)),
             _ => None,
         };
         if dragging.is_some() && self.moving == dragging {

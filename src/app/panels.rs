@@ -120,6 +120,7 @@ fn tools_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
         ("Polygon", Tool::Polygon, "click corners; double-click or click the first corner to close"),
         ("Select", Tool::Select, "select, drag or delete seeds and shapes"),
         ("Edit", Tool::Edit, "drag a contour by hand (merges, splits and holes happen exactly); click to select a contour, Delete removes it"),
+        ("Brush", Tool::Brush, "push contours with a disc: from inside a region its boundary moves out, from outside it moves in; merges, splits and holes happen exactly"),
     ] {
         if ui
             .selectable_label(app.settings.tool == tool, label)

@@ -33,6 +33,8 @@ pub struct Settings {
     pub contrast: (f32, f32),
     /// Fill regions on the canvas.
     pub show_fill: bool,
+    /// Radius of the brush, image pixels.
+    pub brush_radius: f64,
     /// The folder of the last file opened.
     pub last_dir: Option<PathBuf>,
 }
@@ -53,6 +55,7 @@ impl Default for Settings {
             tool: Tool::Seed,
             contrast: (0.0, 1.0),
             show_fill: true,
+            brush_radius: 8.0,
             last_dir: None,
         }
     }

@@ -59,6 +59,17 @@ pub enum Edit {
         /// Where to.
         to: Point,
     },
+    /// A brush stroke ([`Evolver::brush`]).
+    Brush {
+        /// Frames done when it was made.
+        frame: usize,
+        /// Where the brush's centre started.
+        from: Point,
+        /// Where it ended.
+        to: Point,
+        /// The brush's radius, pixels.
+        radius: f64,
+    },
     /// A contour deleted by hand ([`Evolver::delete_contour`]).
     Delete {
         /// Frames done when it was made.
@@ -72,9 +83,10 @@ impl Edit {
     /// Frames done when the edit was made.
     pub fn frame(&self) -> usize {
         match *self {
-            Edit::Forces { frame, .. } | Edit::Drag { frame, .. } | Edit::Delete { frame, .. } => {
-                frame
-            }
+            Edit::Forces { frame, .. }
+            | Edit::Drag { frame, .. }
+            | Edit::Brush { frame, .. }
+            | Edit::Delete { frame, .. } => frame,
         }
     }
 }
@@ -287,6 +299,30 @@ impl Evolver {
         (events, lead)
     }
 
+    /// A brush stroke of `radius` from `from` to `to`: contour vertices inside the moving
+    /// disc are pushed out to its rim through the topology core (see
+    /// [`super::explicit::Explicit::brush`]); the events are logged at the current frame.
+    /// Not in `Mode::Implicit` (no event).
+    pub fn brush(&mut self, from: Point, to: Point, radius: f64) -> Vec<TopologyEvent> {
+        if !(radius.is_finite() && radius > 0.0 && from.is_finite() && to.is_finite()) {
+            return Vec::new();
+        }
+        self.edits.push(Edit::Brush {
+            frame: self.frame,
+            from,
+            to,
+            radius,
+        });
+        let level = self.schedule.level;
+        let events = match &mut self.engine {
+            Engines::Adaptive(e) => e.brush(from, to, radius, level),
+            Engines::Preserve(e) => e.brush(from, to, radius, level),
+            Engines::Implicit(_) => Vec::new(),
+        };
+        self.log_events(&events);
+        events
+    }
+
     /// The vertex nearest to `at` within `tol` pixels, if any.
     pub fn vertex_near(&self, at: Point, tol: f64) -> Option<u32> {
         self.contours().nearest_vertex(at, tol)
@@ -332,6 +368,11 @@ impl Evolver {
             Edit::Forces { weights, step, .. } => self.set_forces(weights, step)?,
             Edit::Drag { vertex, to, .. } => {
                 self.hand_drag(vertex, to);
+            }
+            Edit::Brush {
+                from, to, radius, ..
+            } => {
+                self.brush(from, to, radius);
             }
             Edit::Delete { contour, .. } => self.delete_contour(ContourId(contour)),
         }

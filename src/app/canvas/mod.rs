@@ -29,6 +29,9 @@ pub struct CanvasState {
     moving: Option<usize>,
     /// The contour vertex the Edit tool drags.
     editing: Option<u32>,
+    /// Where the brush was last frame during a stroke, and the stroke's number.
+    brush_at: Option<Point>,
+    strokes: u32,
     /// The canvas rectangle on screen last frame.
     rect: Option<Rect>,
     fill_cache: Option<(usize, usize, fill::FillMesh)>,

@@ -42,6 +42,11 @@ pub(super) fn tools_layer(
             }
         }
     }
+    if tool == Tool::Brush {
+        brush(app, ui, response, painter, view, pointer);
+        return;
+    }
+    let cs = &mut app.canvas;
     if response.dragged_by(egui::PointerButton::Primary) {
         if let (Some(p), Some(_)) = (pointer, cs.drag_from_in_image) {
             cs.drag_to_in_image = Some(view.to_image(p));
@@ -84,6 +89,60 @@ pub(super) fn tools_layer(
             pts.push(h);
         }
         painter.add(egui::Shape::line(pts, Stroke::new(1.5, Color32::YELLOW)));
+    }
+}
+
+/// The brush: a press starts a stroke (a dab where it is), a drag moves the disc, each
+/// frame's movement one command; the disc is drawn under the pointer.
+fn brush(
+    app: &mut TopoApp,
+    ui: &egui::Ui,
+    response: &egui::Response,
+    painter: &egui::Painter,
+    view: View,
+    pointer: Option<Pos2>,
+) {
+    let radius = app.settings.brush_radius;
+    let cs = &mut app.canvas;
+    cs.drag_from_in_image = None;
+    cs.drag_to_in_image = None;
+    let pressed = response.drag_started_by(egui::PointerButton::Primary)
+        || response.clicked_by(egui::PointerButton::Primary);
+    let dragging = response.dragged_by(egui::PointerButton::Primary);
+    if let Some(p) = pointer.map(|s| view.to_image(s)) {
+        if pressed && cs.brush_at.is_none() {
+            cs.strokes = cs.strokes.wrapping_add(1);
+            // The stroke starts where the button went down, not where the drag began.
+            let start = ui
+                .input(|i| i.pointer.press_origin())
+                .map_or(p, |s| view.to_image(s));
+            cs.brush_at = Some(start);
+            app.commands.push(Command::Brush {
+                from: start,
+                to: start,
+                radius,
+                stroke: cs.strokes,
+            });
+        }
+        if let Some(last) = cs.brush_at.filter(|&l| dragging && l != p) {
+            app.commands.push(Command::Brush {
+                from: last,
+                to: p,
+                radius,
+                stroke: cs.strokes,
+            });
+            cs.brush_at = Some(p);
+        }
+    }
+    if !dragging {
+        cs.brush_at = None;
+    }
+    if let Some(h) = response.hover_pos().or(pointer) {
+        painter.circle_stroke(
+            h,
+            radius as f32 * view.zoom,
+            Stroke::new(1.5, Color32::from_rgb(255, 230, 120)),
+        );
     }
 }
 

@@ -132,3 +132,57 @@ fn successor(set: &ContourSet, was: Point, contour: ContourId) -> Option<u32> {
     set.nearest_vertex(was, 2.0 * set.max_edge())
         .filter(|&u| set.contour_of(u) == contour)
 }
+
+impl<M: Motion> Explicit<M> {
+    /// A brush stroke: the disc of `radius` around the brush moves from `from` to `to`,
+    /// in steps of a quarter of the edge bound, and at each step every contour vertex
+    /// inside the disc is pushed out to its rim, straight away from the centre, through
+    /// the topology core. Brushing from inside a region pushes its boundary out (it grows
+    /// and may merge with another); from outside pushes it in (it shrinks, may split or
+    /// open a hole). Returns the events.
+    pub fn brush(
+        &mut self,
+        from: Point,
+        to: Point,
+        radius: f64,
+        level: usize,
+    ) -> Vec<TopologyEvent> {
+        let mut events = Vec::new();
+        let (scale, d_min, d_max) = spacing(level);
+        let step = 0.25 * self.set.max_edge();
+        let n = (from.dist(to) / step).ceil().max(1.0) as usize;
+        let mut near = Vec::new();
+        for k in 1..=n {
+            let c = from.lerp(to, k as f64 / n as f64);
+            self.set.vertices_near(
+                &crate::geometry::Aabb { min: c, max: c }.expand(radius),
+                &mut near,
+            );
+            for &v in &near {
+                if !self.set.is_alive(v) {
+                    continue;
+                }
+                let x = self.set.position(v);
+                let d = x.dist(c);
+                if d >= radius || d == 0.0 {
+                    continue;
+                }
+                let goal = self.bounds.clamp(c + (x - c) * (radius / d));
+                for f in [1.0, 0.5, 0.25] {
+                    match M::attempt(&mut self.set, v, x.lerp(goal, f), scale) {
+                        Ok(ev) => {
+                            events.extend(ev);
+                            break;
+                        }
+                        Err(MoveError::Degenerate(_)) => continue,
+                        Err(_) => break,
+                    }
+                }
+            }
+            // Keep edges within bounds as the rim is traced, so the next step finds
+            // vertices all along it.
+            super::remesh(&mut self.set, d_min, d_max, M::gap(scale), &mut events);
+        }
+        events
+    }
+}

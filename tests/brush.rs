@@ -1,0 +1,124 @@
+//! The brush: contour vertices inside a moving disc are pushed out to its rim through
+//! the topology core, so strokes merge, split and open holes exactly.
+
+use topocontour::evolution::{Evolver, Field, Mode, Params, Shape};
+use topocontour::{Point, TopologyEvent};
+
+fn evolver(shapes: &[Shape], mode: Mode) -> Evolver {
+    let image = Field::new(128, 96, vec![0.5; 128 * 96]);
+    Evolver::new(
+        &image,
+        shapes,
+        Params {
+            mode,
+            ..Params::default()
+        },
+    )
+    .unwrap()
+}
+
+fn disk(x: f64, y: f64, r: f64) -> Shape {
+    Shape::Disk {
+        center: Point::new(x, y),
+        radius: r,
+    }
+}
+
+#[test]
+fn a_stroke_from_inside_pushes_the_boundary_out_and_merges() {
+    let mut ev = evolver(
+        &[disk(40.0, 48.0, 12.0), disk(74.0, 48.0, 12.0)],
+        Mode::Adaptive,
+    );
+    assert_eq!(ev.contours().contour_count(), 2);
+    let events = ev.brush(Point::new(40.0, 48.0), Point::new(58.0, 48.0), 8.0);
+    assert!(
+        events
+            .iter()
+            .any(|e| matches!(e, TopologyEvent::Merge { .. })),
+        "{events:?}"
+    );
+    assert_eq!(ev.contours().contour_count(), 1);
+    ev.contours().sanity_check().unwrap();
+    assert!(ev
+        .events()
+        .iter()
+        .any(|e| matches!(e.event, TopologyEvent::Merge { .. })));
+    assert_eq!(ev.edits().len(), 1);
+}
+
+#[test]
+fn a_stroke_from_outside_cuts_a_bar_in_two() {
+    let bar = Shape::Rect {
+        min: Point::new(20.0, 42.0),
+        max: Point::new(108.0, 54.0),
+    };
+    let mut ev = evolver(&[bar], Mode::Adaptive);
+    let area = ev.contours().region_area();
+    let events = ev.brush(Point::new(64.0, 20.0), Point::new(64.0, 80.0), 6.0);
+    assert!(
+        events
+            .iter()
+            .any(|e| matches!(e, TopologyEvent::Split { .. })),
+        "{events:?}"
+    );
+    assert_eq!(ev.contours().contour_count(), 2);
+    assert!(
+        ev.contours().region_area() < area - 100.0,
+        "a channel was cut"
+    );
+    ev.contours().sanity_check().unwrap();
+}
+
+#[test]
+fn preserve_keeps_the_contours_apart_under_the_brush() {
+    let mut ev = evolver(
+        &[disk(40.0, 48.0, 12.0), disk(74.0, 48.0, 12.0)],
+        Mode::Preserve,
+    );
+    ev.brush(Point::new(40.0, 48.0), Point::new(62.0, 48.0), 8.0);
+    assert_eq!(
+        ev.contours().contour_count(),
+        2,
+        "no merge in preserve mode"
+    );
+    ev.contours().sanity_check().unwrap();
+}
+
+/// Random strokes over random seeds: every stroke leaves a valid set inside the image.
+#[test]
+fn random_strokes_keep_every_invariant() {
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut rnd = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..8 {
+        let shapes: Vec<Shape> = (0..4)
+            .map(|_| {
+                disk(
+                    10.0 + 108.0 * rnd(),
+                    10.0 + 76.0 * rnd(),
+                    4.0 + 10.0 * rnd(),
+                )
+            })
+            .collect();
+        let mut ev = evolver(&shapes, Mode::Adaptive);
+        for _ in 0..25 {
+            let from = Point::new(-10.0 + 148.0 * rnd(), -10.0 + 116.0 * rnd());
+            let to = Point::new(from.x + 40.0 * (rnd() - 0.5), from.y + 40.0 * (rnd() - 0.5));
+            ev.brush(from, to, 2.0 + 10.0 * rnd());
+            let set = ev.contours();
+            set.sanity_check().unwrap();
+            for v in set.vertices() {
+                let p = set.position(v);
+                assert!(
+                    (0.0..=128.0).contains(&p.x) && (0.0..=96.0).contains(&p.y),
+                    "{p:?}"
+                );
+            }
+        }
+    }
+}
