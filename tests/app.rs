@@ -851,3 +851,45 @@ fn a_brush_stroke_merges_and_undoes_as_one_step() {
     h.step();
     assert_eq!(count(&h), 2, "one undo takes the whole stroke back");
 }
+
+/// "Apply to folder…" segments every image of a folder in the background (the window
+/// keeps drawing, a progress bar shows) and writes JSON and CSV per image and
+/// summary.csv into the folder's topocontour subfolder.
+#[test]
+fn apply_to_folder_runs_in_the_background() {
+    let dir = std::env::temp_dir().join(format!("topocontour-app-folder-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    for (i, case) in ["bridge_merge", "blobs_wrap", "ring_seed"]
+        .iter()
+        .enumerate()
+    {
+        std::fs::copy(case_image(case), dir.join(format!("img{i}.png"))).unwrap();
+    }
+    let mut app = TopoApp::with_sample();
+    app.send(Command::ApplyToFolder(dir.clone()));
+    let mut h = harness(app);
+    h.step();
+    assert!(h.state().folder.is_some(), "{:?}", h.state().notice);
+    h.get_by_label("Cancel");
+    let t = std::time::Instant::now();
+    while h.state().folder.is_some() {
+        assert!(t.elapsed().as_secs() < 60, "the folder run finishes");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        h.step();
+    }
+    let notice = h.state().notice.clone().unwrap();
+    assert!(notice.contains("wrote 3 images"), "{notice}");
+    let out = dir.join("topocontour");
+    for i in 0..3 {
+        let json: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(out.join(format!("img{i}.json"))).unwrap(),
+        )
+        .unwrap();
+        assert!(!json["contours"].as_array().unwrap().is_empty());
+        assert!(out.join(format!("img{i}.csv")).is_file());
+    }
+    let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    assert!(summary.lines().count() > 3, "{summary}");
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -128,6 +128,13 @@ pub enum Command {
         /// The step, in grid spacings.
         step: f64,
     },
+    /// Segment every image of a folder with the shapes and parameters on screen, in the
+    /// background; outputs go to its `topocontour` subfolder.
+    ApplyToFolder(PathBuf),
+    /// Choose the folder in a dialog, then apply to it.
+    ApplyToFolderDialog,
+    /// Stop the folder run after the image in progress.
+    CancelFolder,
     /// Show page `n` (0-based) of a multi-page image; shapes stay.
     SetPage(usize),
     /// The physical size of a pixel (none: unknown).
@@ -247,7 +254,10 @@ impl TopoApp {
             | Command::ExportDialog(..)
             | Command::SessionDialog(..)
             | Command::SaveSession(..)
-            | Command::OpenSession(..) => self.files(c),
+            | Command::OpenSession(..)
+            | Command::ApplyToFolder(..)
+            | Command::ApplyToFolderDialog
+            | Command::CancelFolder => self.files(c),
         }
     }
 
@@ -545,6 +555,22 @@ impl TopoApp {
                     (Some(p), false) => self.apply_now(Command::OpenSession(p)),
                     (None, true) => self.prompt_path(PathPurpose::SaveSession, name),
                     (None, false) => self.prompt_path(PathPurpose::OpenSession, String::new()),
+                }
+            }
+            Command::ApplyToFolder(dir) => self.apply_to_folder(&dir),
+            Command::ApplyToFolderDialog => {
+                let mut d = rfd::FileDialog::new();
+                if let Some(dir) = &self.settings.last_dir {
+                    d = d.set_directory(dir);
+                }
+                match d.pick_folder() {
+                    Some(p) => self.apply_now(Command::ApplyToFolder(p)),
+                    None => self.prompt_path(PathPurpose::ApplyToFolder, String::new()),
+                }
+            }
+            Command::CancelFolder => {
+                if let Some(f) = &self.folder {
+                    f.cancel();
                 }
             }
             Command::SaveSession(p) => match self.save_session(&p) {

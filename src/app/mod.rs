@@ -6,6 +6,7 @@ mod canvas;
 mod command;
 mod files;
 mod fill;
+mod folder;
 mod history;
 mod keys;
 mod objects;
@@ -16,6 +17,7 @@ mod settings;
 
 pub use command::{Command, ExportKind, Tool};
 pub use files::AppError;
+pub use folder::FolderRun;
 pub use path_prompt::{PathPrompt, PathPurpose};
 pub use run::{FrameRecord, RingView, Run};
 pub use settings::{auto_contrast, Settings};
@@ -80,6 +82,8 @@ pub struct TopoApp {
     pub path_prompt: Option<PathPrompt>,
     /// The page of a stack on screen, and the pixel size.
     pub stack: ImageStack,
+    /// A folder being segmented in the background ("Apply to folder…").
+    pub folder: Option<FolderRun>,
 }
 
 /// Where the image on screen sits in its file, and how large its pixels are.
@@ -123,6 +127,7 @@ impl Default for TopoApp {
             objects: objects::ObjectTable::default(),
             path_prompt: None,
             stack: ImageStack::default(),
+            folder: None,
         }
     }
 }
@@ -362,6 +367,7 @@ impl TopoApp {
         self.keyboard(ui);
         self.help_ui(&ui.ctx().clone());
         self.path_prompt_ui(&ui.ctx().clone());
+        self.poll_folder(&ui.ctx().clone());
         panels::top_bar(self, ui);
         panels::bottom_bar(self, ui);
         panels::side_panel(self, ui);

@@ -70,9 +70,18 @@ fn files_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
             app.send(Command::SessionDialog(false));
             ui.close();
         }
+        ui.separator();
+        if ui
+            .button("Apply to folder…")
+            .on_hover_text("segment every image of a folder with these shapes (or found seeds) and parameters; JSON and CSV per image and summary.csv go to its topocontour subfolder")
+            .clicked()
+        {
+            app.send(Command::ApplyToFolderDialog);
+            ui.close();
+        }
     })
     .response
-    .on_hover_text("save or reopen the whole state of a segmentation");
+    .on_hover_text("save or reopen the whole state of a segmentation; apply it to a folder");
     ui.menu_button("Export", |ui| {
         for (label, kind, tip) in [
             ("SVG…", ExportKind::Svg, "the contours as vector graphics"),
@@ -268,6 +277,25 @@ fn playback_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
 
 pub fn bottom_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
     egui::Panel::bottom("status").show(ui, |ui| {
+        if let Some(f) = &app.folder {
+            let done = f.done.load(std::sync::atomic::Ordering::SeqCst);
+            let (total, out) = (f.total, f.out.display().to_string());
+            ui.horizontal(|ui| {
+                ui.add(
+                    egui::ProgressBar::new(done as f32 / total.max(1) as f32)
+                        .desired_width(320.0)
+                        .text(format!("{done} / {total} images")),
+                )
+                .on_hover_text(format!("outputs go to {out}"));
+                if ui
+                    .button("Cancel")
+                    .on_hover_text("stop after the image in progress (what is done is kept)")
+                    .clicked()
+                {
+                    app.send(Command::CancelFolder);
+                }
+            });
+        }
         if let Some(run) = &app.run {
             let last = (run.history.len() - 1)
                 .max(app.run_b.as_ref().map_or(0, |b| b.history.len() - 1));

@@ -16,6 +16,8 @@ pub enum PathPurpose {
     SaveSession,
     /// A session file to open.
     OpenSession,
+    /// A folder of images to segment.
+    ApplyToFolder,
 }
 
 impl PathPurpose {
@@ -26,6 +28,7 @@ impl PathPurpose {
             PathPurpose::Export(_) => "Export to",
             PathPurpose::SaveSession => "Save session as",
             PathPurpose::OpenSession => "Open session",
+            PathPurpose::ApplyToFolder => "Apply to folder",
         }
     }
     /// The command the path completes.
@@ -35,6 +38,7 @@ impl PathPurpose {
             PathPurpose::Export(kind) => Command::Export(kind, path),
             PathPurpose::SaveSession => Command::SaveSession(path),
             PathPurpose::OpenSession => Command::OpenSession(path),
+            PathPurpose::ApplyToFolder => Command::ApplyToFolder(path),
         }
     }
 }

@@ -12,7 +12,7 @@
 use super::run::{evolve, file_name, RunSettings};
 use super::segment::write_outputs;
 use super::{bad, note, Failure, Format};
-use crate::evolution::regions;
+use crate::io::folder::{list_images, summary_rows, SUMMARY_HEADER};
 use crate::io::{OutputFiles, Outputs};
 use clap::Args;
 use rayon::prelude::*;
@@ -43,7 +43,8 @@ type ImageResult = Result<Vec<String>, Failure>;
 
 /// Runs `batch`.
 pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
-    let images = list_images(&a.input)?;
+    let images = list_images(&a.input)
+        .map_err(|e| bad(format!("cannot read {}: {e}", a.input.display())))?;
     if images.is_empty() {
         return Err(bad(format!(
             "{} holds no PNG, JPEG or TIFF image",
@@ -90,9 +91,7 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
             .collect()
     });
     bar.finish_and_clear();
-    let mut rows = String::from(
-        "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,mean_intensity\n",
-    );
+    let mut rows = String::from(SUMMARY_HEADER);
     let (mut done, mut failed) = (0, 0);
     for (img, r) in &results {
         match r {
@@ -126,26 +125,6 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-/// The images of `dir`, in name order.
-fn list_images(dir: &Path) -> Result<Vec<PathBuf>, Failure> {
-    let entries =
-        std::fs::read_dir(dir).map_err(|e| bad(format!("cannot read {}: {e}", dir.display())))?;
-    let mut images: Vec<PathBuf> = entries
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.is_file())
-        .filter(|p| {
-            p.extension().and_then(|e| e.to_str()).is_some_and(|e| {
-                ["png", "jpg", "jpeg", "tif", "tiff"]
-                    .iter()
-                    .any(|x| e.eq_ignore_ascii_case(x))
-            })
-        })
-        .collect();
-    images.sort();
-    Ok(images)
-}
-
 /// Segments one image and writes its outputs; returns its summary rows.
 fn one_image(img: &Path, a: &BatchArgs) -> ImageResult {
     let stem = img
@@ -166,36 +145,4 @@ fn one_image(img: &Path, a: &BatchArgs) -> ImageResult {
     let wanted: Vec<(Format, &Path)> = a.formats.iter().copied().zip(refs).collect();
     write_outputs(files, &wanted, &out, image, None)?;
     Ok(summary_rows(&stem, &out, image))
-}
-
-/// One CSV row per region: the measurements of `Outputs::csv` and the mean intensity
-/// (0–1 of the image's full scale) over the region's pixels.
-fn summary_rows(name: &str, out: &Outputs, image: &crate::evolution::Field) -> Vec<String> {
-    let labels = out.labels();
-    let regions = regions(out.set);
-    let n = regions.len();
-    let (mut sum, mut count) = (vec![0f64; n + 1], vec![0usize; n + 1]);
-    for (&l, &v) in labels.iter().zip(&image.data) {
-        sum[l as usize] += v as f64;
-        count[l as usize] += 1;
-    }
-    let quoted = crate::io::export::csv_quoted(name);
-    regions
-        .iter()
-        .enumerate()
-        .map(|(k, r)| {
-            let mean = sum[k + 1] / count[k + 1].max(1) as f64;
-            format!(
-                "{quoted},{},{:.3},{:.3},{:.4},{:.3},{:.3},{},{:.5}\n",
-                r.id,
-                r.area,
-                r.perimeter,
-                r.circularity,
-                r.centroid.x,
-                r.centroid.y,
-                r.holes.len(),
-                mean
-            )
-        })
-        .collect()
 }

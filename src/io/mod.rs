@@ -2,6 +2,7 @@
 
 pub mod atomic;
 pub mod export;
+pub mod folder;
 pub mod load;
 pub mod roi;
 pub mod session;

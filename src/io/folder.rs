@@ -1,0 +1,115 @@
+//! A whole folder with the same settings: what `topocontour batch` and the app's "Apply
+//! to folder…" share — which files are images, how one image is segmented and written,
+//! and the rows of `summary.csv` (one per object, with its mean intensity).
+
+use super::{load_image_page, OutputFiles, Outputs};
+use crate::evolution::{find_seeds, regions, Evolver, Field, Params, Shape};
+use std::path::{Path, PathBuf};
+
+/// The header of `summary.csv`.
+pub const SUMMARY_HEADER: &str =
+    "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,mean_intensity\n";
+
+/// The images of `dir` (regular files ending in .png, .jpg, .jpeg, .tif or .tiff; not
+/// its subfolders), in name order.
+pub fn list_images(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+    let mut images: Vec<PathBuf> = std::fs::read_dir(dir)?
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.is_file())
+        .filter(|p| {
+            p.extension().and_then(|e| e.to_str()).is_some_and(|e| {
+                ["png", "jpg", "jpeg", "tif", "tiff"]
+                    .iter()
+                    .any(|x| e.eq_ignore_ascii_case(x))
+            })
+        })
+        .collect();
+    images.sort();
+    Ok(images)
+}
+
+/// The name of `path` without its extension.
+pub fn stem(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+/// One CSV row per region: the measurements of `Outputs::csv` and the mean intensity
+/// (0–1 of the image's full scale) over the region's pixels.
+pub fn summary_rows(name: &str, out: &Outputs, image: &Field) -> Vec<String> {
+    let labels = out.labels();
+    let regions = regions(out.set);
+    let n = regions.len();
+    let (mut sum, mut count) = (vec![0f64; n + 1], vec![0usize; n + 1]);
+    for (&l, &v) in labels.iter().zip(&image.data) {
+        sum[l as usize] += v as f64;
+        count[l as usize] += 1;
+    }
+    let quoted = super::export::csv_quoted(name);
+    regions
+        .iter()
+        .enumerate()
+        .map(|(k, r)| {
+            let mean = sum[k + 1] / count[k + 1].max(1) as f64;
+            format!(
+                "{quoted},{},{:.3},{:.3},{:.4},{:.3},{:.3},{},{:.5}\n",
+                r.id,
+                r.area,
+                r.perimeter,
+                r.circularity,
+                r.centroid.x,
+                r.centroid.y,
+                r.holes.len(),
+                mean
+            )
+        })
+        .collect()
+}
+
+/// How every image of a folder is segmented (the app's "Apply to folder…").
+#[derive(Clone, Debug)]
+pub struct FolderJob {
+    /// The shapes every image starts from (clipped to each image).
+    pub shapes: Vec<Shape>,
+    /// Add one seed per object found in each image (used alone when `shapes` is empty).
+    pub auto_seeds: bool,
+    /// The parameters.
+    pub params: Params,
+    /// Where `NAME.json`, `NAME.csv` and `summary.csv` go.
+    pub out: PathBuf,
+}
+
+impl FolderJob {
+    /// Segments `img` and writes `NAME.json` and `NAME.csv` (all or nothing); returns its
+    /// summary rows, or the reason it failed in one line.
+    pub fn run_one(&self, img: &Path) -> Result<Vec<String>, String> {
+        let stem = stem(img);
+        let json = self.out.join(format!("{stem}.json"));
+        let csv = self.out.join(format!("{stem}.csv"));
+        let files = OutputFiles::prepare(Some(img), &[&json, &csv]).map_err(|e| e.to_string())?;
+        let (image, info) = load_image_page(img, 0).map_err(|e| e.to_string())?;
+        let mut shapes = self.shapes.clone();
+        if self.auto_seeds || shapes.is_empty() {
+            shapes.extend(find_seeds(
+                &image,
+                self.params.polarity,
+                self.params.modality,
+            ));
+        }
+        let mut ev =
+            Evolver::new(&image, &shapes, self.params.clone()).map_err(|e| e.to_string())?;
+        ev.run();
+        ev.filter_clutter();
+        let name = img
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let out = Outputs::of(&ev, ev.contours(), &name).with_pixel_size(info.pixel_size);
+        files
+            .commit(vec![out.json().into_bytes(), out.csv().into_bytes()])
+            .map_err(|e| e.to_string())?;
+        Ok(summary_rows(&stem, &out, &image))
+    }
+}
