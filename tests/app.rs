@@ -893,3 +893,35 @@ fn apply_to_folder_runs_in_the_background() {
     assert!(summary.lines().count() > 3, "{summary}");
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// A large image is prepared on a background thread: the frame that asked for steps
+/// returns at once with the preparation under way, and the steps happen when it is done.
+#[test]
+fn a_large_image_is_prepared_in_the_background() {
+    let (w, h_px) = (1600u32, 1400u32);
+    assert!((w * h_px) as usize > topocontour::app::PREPARE_IN_BACKGROUND);
+    let img = image::GrayImage::from_fn(w, h_px, |x, y| {
+        let (dx, dy) = (x as f64 - 800.0, y as f64 - 700.0);
+        image::Luma([if dx.hypot(dy) < 300.0 { 40 } else { 200 }])
+    });
+    let path =
+        std::env::temp_dir().join(format!("topocontour-app-large-{}.png", std::process::id()));
+    img.save(&path).unwrap();
+    let mut app = TopoApp::default();
+    app.send(Command::OpenImage(path.clone()));
+    app.send(Command::WrapBorder(10.0));
+    app.send(Command::Step(3));
+    let mut h = harness(app);
+    h.step();
+    assert!(h.state().preparing.is_some(), "prepared in the background");
+    assert!(h.state().run.is_none());
+    let t = std::time::Instant::now();
+    while h.state().preparing.is_some() {
+        assert!(t.elapsed().as_secs() < 120, "the preparation finishes");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        h.step();
+    }
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    assert_eq!(h.state().shown, 3, "the steps asked meanwhile were done");
+    let _ = std::fs::remove_file(path);
+}

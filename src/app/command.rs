@@ -399,6 +399,8 @@ impl TopoApp {
             Command::Play => {
                 if self.ensure_run() {
                     self.playing = true;
+                } else if let Some(p) = self.preparing.as_mut() {
+                    p.play = true;
                 }
             }
             Command::Pause => self.playing = false,

@@ -84,6 +84,23 @@ pub struct TopoApp {
     pub stack: ImageStack,
     /// A folder being segmented in the background ("Apply to folder…").
     pub folder: Option<FolderRun>,
+    /// A run being prepared in the background (large images).
+    pub preparing: Option<Preparing>,
+}
+
+/// Images with more pixels than this are prepared on a background thread.
+pub const PREPARE_IN_BACKGROUND: usize = 2_000_000;
+
+/// An evolver as prepared, or why it could not start.
+type Prepared = Result<Evolver, crate::evolution::EvolveError>;
+
+/// A run being prepared on a background thread, and what was asked meanwhile.
+pub struct Preparing {
+    handle: std::thread::JoinHandle<(Prepared, Option<Prepared>)>,
+    /// Frames to step once ready.
+    steps: usize,
+    /// Play once ready.
+    play: bool,
 }
 
 /// Where the image on screen sits in its file, and how large its pixels are.
@@ -128,6 +145,7 @@ impl Default for TopoApp {
             path_prompt: None,
             stack: ImageStack::default(),
             folder: None,
+            preparing: None,
         }
     }
 }
@@ -170,6 +188,9 @@ impl TopoApp {
     }
 
     fn reset_run(&mut self) {
+        // A run still being prepared is for what was on screen: dropped (its thread ends
+        // on its own).
+        self.preparing = None;
         self.run = None;
         self.run_b = None;
         self.shown = 0;
@@ -196,21 +217,43 @@ impl TopoApp {
         if self.run.is_some() {
             return true;
         }
-        let Some(image) = &self.image else {
+        if self.preparing.is_some() {
+            return false;
+        }
+        let Some(image) = self.image.clone() else {
             self.error = Some(AppError::NoImage);
             return false;
         };
-        let second = self.settings.compare.map(|mode| {
-            Evolver::new(
-                image,
-                &self.shapes,
-                Params {
+        let (shapes, params, compare) = (self.shapes.clone(), self.params(), self.settings.compare);
+        let large = image.width * image.height > PREPARE_IN_BACKGROUND;
+        let build = move || {
+            let second = compare.map(|mode| {
+                let p = Params {
                     mode,
-                    ..self.params()
-                },
-            )
-        });
-        match Evolver::new(image, &self.shapes, self.params()) {
+                    ..params.clone()
+                };
+                Evolver::new(&image, &shapes, p)
+            });
+            (Evolver::new(&image, &shapes, params), second)
+        };
+        if large {
+            // The pyramid and local statistics of a large image take seconds: the
+            // window stays responsive, and what was asked meanwhile happens after.
+            self.preparing = Some(Preparing {
+                handle: std::thread::spawn(build),
+                steps: 0,
+                play: false,
+            });
+            self.notice = Some("preparing the image (pyramid and local statistics)…".into());
+            return false;
+        }
+        let (first, second) = build();
+        self.install_run(first, second)
+    }
+
+    /// Makes a prepared evolver (and the side-by-side one) the run on screen.
+    fn install_run(&mut self, first: Prepared, second: Option<Prepared>) -> bool {
+        match first {
             Ok(ev) => {
                 self.run = Some(Run::new(ev));
                 self.run_b = second.and_then(Result::ok).map(Run::new);
@@ -226,9 +269,33 @@ impl TopoApp {
         }
     }
 
+    /// Takes a run prepared in the background, then does what was asked meanwhile.
+    fn poll_preparing(&mut self, ctx: &egui::Context) {
+        let Some(p) = &self.preparing else { return };
+        if !p.handle.is_finished() {
+            ctx.request_repaint_after(std::time::Duration::from_millis(50));
+            return;
+        }
+        let p = self.preparing.take().expect("checked");
+        let Ok((first, second)) = p.handle.join() else {
+            self.notice = Some("preparing the image failed".into());
+            return;
+        };
+        if self.install_run(first, second) {
+            self.notice = None;
+            if p.steps > 0 {
+                self.step_frames(p.steps);
+            }
+            self.playing |= p.play;
+        }
+    }
+
     /// Advances `n` frames (from the frame on screen), recording each.
     fn step_frames(&mut self, n: usize) {
         if !self.ensure_run() {
+            if let Some(p) = self.preparing.as_mut() {
+                p.steps += n;
+            }
             return;
         }
         let run = self.run.as_mut().expect("ensured");
@@ -331,6 +398,7 @@ impl TopoApp {
         self.shown = s.shown;
         self.log = s.log;
         self.playing = false;
+        self.preparing = None;
     }
 
     /// Advances playback by the time since the last frame.
@@ -341,7 +409,16 @@ impl TopoApp {
         self.play_clock += dt * self.settings.speed as f64;
         let n = (self.play_clock.floor() as usize).clamp(1, 50);
         self.play_clock = (self.play_clock - n as f64).max(0.0);
-        self.step_frames(n);
+        // At most a tenth of a second of frames per repaint: large images play slower
+        // instead of freezing the window.
+        let t = std::time::Instant::now();
+        for _ in 0..n {
+            self.step_frames(1);
+            if !self.playing || t.elapsed() > std::time::Duration::from_millis(100) {
+                self.play_clock = 0.0;
+                break;
+            }
+        }
     }
 
     /// Where image point `p` is on the canvas (as of the last frame drawn).
@@ -368,6 +445,7 @@ impl TopoApp {
         self.help_ui(&ui.ctx().clone());
         self.path_prompt_ui(&ui.ctx().clone());
         self.poll_folder(&ui.ctx().clone());
+        self.poll_preparing(&ui.ctx().clone());
         panels::top_bar(self, ui);
         panels::bottom_bar(self, ui);
         panels::side_panel(self, ui);

@@ -277,6 +277,13 @@ fn playback_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
 
 pub fn bottom_bar(app: &mut TopoApp, ui: &mut egui::Ui) {
     egui::Panel::bottom("status").show(ui, |ui| {
+        if app.preparing.is_some() {
+            ui.horizontal(|ui| {
+                ui.spinner();
+                ui.label("preparing the image (pyramid and local statistics)…")
+                    .on_hover_text("large images are prepared in the background; Play or Step now and it happens when ready");
+            });
+        }
         if let Some(f) = &app.folder {
             let done = f.done.load(std::sync::atomic::Ordering::SeqCst);
             let (total, out) = (f.total, f.out.display().to_string());
