@@ -119,7 +119,7 @@ impl TopoApp {
                     }
                 });
                 ui.separator();
-                ui.label("Tools: Seed (click, drag sets the radius), Rectangle, Polygon (click the first point to close), Select (drag moves, Delete removes), Edit (drag a contour vertex: merges, splits and holes happen exactly; click a contour to measure it, Delete removes it). Find seeds places one seed per object.");
+                ui.label("Tools: Seed (click, drag sets the radius), Rectangle, Polygon (click the first point to close), Select (drag moves, Delete removes), Edit (drag a contour vertex: merges, splits and holes happen exactly; click a contour to measure it, Delete removes it), Brush (a disc pushes contours: from inside a region the boundary moves out, from outside it moves in). Find seeds places one seed per object; Session > Apply to folder… runs every image of a folder.");
             });
         self.show_help = open;
     }

@@ -96,8 +96,10 @@ impl TopoApp {
                         .desired_width(480.0)
                         .hint_text("/path/to/file"),
                 );
-                field.request_focus();
-                let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+                if !field.has_focus() && !field.lost_focus() {
+                    field.request_focus();
+                }
+                let enter = ui.input(|i| i.key_pressed(egui::Key::Enter));
                 ui.horizontal(|ui| {
                     done = ui
                         .button("OK")
