@@ -49,9 +49,21 @@ fn clicking_on_the_canvas_adds_a_seed() {
     assert_eq!(h.state().settings.tool, Tool::Seed);
     let canvas = h.get_by_label("Canvas").rect();
     click_at(&mut h, canvas.center());
+    // The sample's wrap rectangle makes way for the first seed (it would swallow it).
     let shapes = &h.state().shapes;
-    assert_eq!(shapes.len(), 2, "{shapes:?}");
-    assert!(matches!(shapes[1], Shape::Disk { radius, .. } if radius == 5.0));
+    assert_eq!(shapes.len(), 1, "{shapes:?}");
+    assert!(matches!(shapes[0], Shape::Disk { radius, .. } if radius == 5.0));
+    assert!(h.state().notice.as_deref().unwrap().contains("made way"));
+    click_at(&mut h, canvas.center() + egui::vec2(40.0, 0.0));
+    assert_eq!(h.state().shapes.len(), 2, "later seeds add up");
+    h.state_mut().send(Command::Undo);
+    h.step();
+    h.state_mut().send(Command::Undo);
+    h.step();
+    assert!(
+        matches!(h.state().shapes[..], [Shape::Rect { .. }]),
+        "Undo brings the wrap back"
+    );
 }
 
 #[test]

@@ -340,6 +340,16 @@ impl TopoApp {
     fn edit_shapes(&mut self, c: Command) {
         match c {
             Command::AddShape(s) => {
+                // The sample's wrap would swallow a seed clicked inside it: it makes way
+                // (Undo brings it back).
+                if self.sample_wrap && matches!(s, Shape::Disk { .. }) {
+                    self.shapes.clear();
+                    self.notice = Some(
+                        "the sample's wrap rectangle made way for your seed (Undo brings it back)"
+                            .into(),
+                    );
+                }
+                self.sample_wrap = false;
                 self.shapes.push(s);
                 self.selected = Some(self.shapes.len() - 1);
                 self.reset_run();

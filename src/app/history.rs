@@ -18,6 +18,7 @@ pub struct Snapshot {
     pub image_name: String,
     pub image_path: Option<std::path::PathBuf>,
     pub stack: super::ImageStack,
+    pub sample_wrap: bool,
     pub shapes: Vec<Shape>,
     pub selected: Option<usize>,
     pub settings: Settings,

@@ -86,6 +86,9 @@ pub struct TopoApp {
     pub folder: Option<FolderRun>,
     /// A run being prepared in the background (large images).
     pub preparing: Option<Preparing>,
+    /// The shapes are the sample's wrap rectangle, as it opened: labelled on the canvas,
+    /// replaced by the first seed the user adds.
+    pub sample_wrap: bool,
 }
 
 /// Images with more pixels than this are prepared on a background thread.
@@ -146,6 +149,7 @@ impl Default for TopoApp {
             stack: ImageStack::default(),
             folder: None,
             preparing: None,
+            sample_wrap: false,
         }
     }
 }
@@ -159,6 +163,7 @@ impl TopoApp {
         app.set_image(field, "cells.png (sample)".into());
         app.stack.pages = 1;
         app.apply_now(Command::WrapBorder(6.0));
+        app.sample_wrap = true;
         app
     }
 
@@ -184,6 +189,7 @@ impl TopoApp {
         self.texture = None;
         self.shapes.clear();
         self.selected = None;
+        self.sample_wrap = false;
         self.reset_run();
     }
 
@@ -368,6 +374,7 @@ impl TopoApp {
             image_name: self.image_name.clone(),
             image_path: self.image_path.clone(),
             stack: self.stack.clone(),
+            sample_wrap: self.sample_wrap,
             shapes: self.shapes.clone(),
             selected: self.selected,
             settings: self.settings.clone(),
@@ -390,6 +397,7 @@ impl TopoApp {
         self.image_name = s.image_name;
         self.image_path = s.image_path;
         self.stack = s.stack;
+        self.sample_wrap = s.sample_wrap;
         self.shapes = s.shapes;
         self.selected = s.selected;
         self.settings = s.settings;

@@ -194,6 +194,15 @@ pub(super) fn shapes_layer(app: &TopoApp, painter: &egui::Painter, view: View) {
                 painter.circle_filled(c, 2.0, stroke.color);
             }
             Shape::Rect { min, max } => {
+                if app.sample_wrap {
+                    painter.text(
+                        view.to_screen(*min) + Vec2::new(6.0, 4.0),
+                        egui::Align2::LEFT_TOP,
+                        "wrap: shrinks onto every cell when you press Play; a seed you click replaces it",
+                        egui::FontId::proportional(14.0),
+                        Color32::from_rgb(80, 200, 255),
+                    );
+                }
                 painter.rect_stroke(
                     Rect::from_min_max(view.to_screen(*min), view.to_screen(*max)),
                     0.0,
