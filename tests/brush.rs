@@ -122,3 +122,37 @@ fn random_strokes_keep_every_invariant() {
         }
     }
 }
+
+/// A C-shaped region whose slit the brush closes: the region now surrounds its inside,
+/// a hole is made.
+#[test]
+fn a_stroke_that_closes_a_slit_makes_a_hole() {
+    let c: Vec<Point> = [
+        (20.0, 20.0),
+        (80.0, 20.0),
+        (80.0, 47.0),
+        (65.0, 47.0),
+        (65.0, 35.0),
+        (35.0, 35.0),
+        (35.0, 65.0),
+        (65.0, 65.0),
+        (65.0, 53.0),
+        (80.0, 53.0),
+        (80.0, 80.0),
+        (20.0, 80.0),
+    ]
+    .iter()
+    .map(|&(x, y)| Point::new(x, y))
+    .collect();
+    let mut ev = evolver(&[Shape::Polygon(c)], Mode::Adaptive);
+    assert_eq!(ev.contours().contour_count(), 1);
+    let events = ev.brush(Point::new(72.0, 41.0), Point::new(72.0, 48.0), 8.0);
+    assert!(
+        events
+            .iter()
+            .any(|e| matches!(e, TopologyEvent::HoleMade { .. })),
+        "{events:?}"
+    );
+    assert_eq!(ev.contours().contour_count(), 2, "outer ring and the hole");
+    ev.contours().sanity_check().unwrap();
+}
