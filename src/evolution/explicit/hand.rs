@@ -104,25 +104,38 @@ impl<M: Motion> Explicit<M> {
             if !self.set.is_alive(u) {
                 continue;
             }
-            let at = self.set.position(u);
-            let mut done = false;
-            for f in [1.0, 0.5, 0.25] {
-                let goal = self.bounds.clamp(at + d * (w * f));
-                match M::attempt(&mut self.set, u, goal, scale) {
-                    Ok(ev) => {
-                        events.extend(ev);
-                        done = true;
-                        break;
-                    }
-                    Err(MoveError::Degenerate(_)) => continue,
-                    Err(_) => break,
-                }
-            }
+            let goal = self.bounds.clamp(self.set.position(u) + d * w);
+            let done = self.shortened(u, goal, scale, events);
             if u == v {
                 lead_moved = done;
             }
         }
         lead_moved
+    }
+}
+
+impl<M: Motion> Explicit<M> {
+    /// Moves `v` towards `goal` (inside the image) through the core, shortened to a half
+    /// and a quarter when the move is degenerate; returns whether it moved.
+    fn shortened(
+        &mut self,
+        v: u32,
+        goal: Point,
+        scale: f64,
+        events: &mut Vec<TopologyEvent>,
+    ) -> bool {
+        let at = self.set.position(v);
+        for f in [1.0, 0.5, 0.25] {
+            match M::attempt(&mut self.set, v, at.lerp(goal, f), scale) {
+                Ok(ev) => {
+                    events.extend(ev);
+                    return true;
+                }
+                Err(MoveError::Degenerate(_)) => continue,
+                Err(_) => return false,
+            }
+        }
+        false
     }
 }
 
@@ -168,16 +181,7 @@ impl<M: Motion> Explicit<M> {
                     continue;
                 }
                 let goal = self.bounds.clamp(c + (x - c) * (radius / d));
-                for f in [1.0, 0.5, 0.25] {
-                    match M::attempt(&mut self.set, v, x.lerp(goal, f), scale) {
-                        Ok(ev) => {
-                            events.extend(ev);
-                            break;
-                        }
-                        Err(MoveError::Degenerate(_)) => continue,
-                        Err(_) => break,
-                    }
-                }
+                self.shortened(v, goal, scale, &mut events);
             }
             // Keep edges within bounds as the rim is traced, so the next step finds
             // vertices all along it.
