@@ -300,16 +300,29 @@ impl ContourSet {
     }
 
     // ---- read access -------------------------------------------------------------------
+    // The fields are private to the crate (the topology core writes them); this is the
+    // read API. Vertex ids index the arena: the accessors below panic on an id the arena
+    // never held, and return stale data for a freed slot (check `is_alive` first when in
+    // doubt). Ring ids likewise (`contains`).
 
     /// Position of a live vertex.
+    ///
+    /// # Panics
+    /// If `v` is not a slot of the arena.
     pub fn position(&self, v: VertexId) -> Point {
         self.pos[v as usize]
     }
     /// The vertex after `v` on its ring.
+    ///
+    /// # Panics
+    /// If `v` is not a slot of the arena.
     pub fn next(&self, v: VertexId) -> VertexId {
         self.next[v as usize]
     }
     /// The vertex before `v` on its ring.
+    ///
+    /// # Panics
+    /// If `v` is not a slot of the arena.
     pub fn prev(&self, v: VertexId) -> VertexId {
         self.prev[v as usize]
     }
@@ -318,6 +331,9 @@ impl ContourSet {
         (v as usize) < self.label.len() && self.label[v as usize] != NIL
     }
     /// The ring a live vertex belongs to.
+    ///
+    /// # Panics
+    /// If `v` is not a slot of the arena.
     pub fn contour_of(&self, v: VertexId) -> ContourId {
         ContourId(self.label[v as usize])
     }
@@ -350,6 +366,9 @@ impl ContourSet {
         matches!(self.rings.get(id.0 as usize), Some(Some(_)))
     }
     /// The vertices of a ring in order, starting anywhere.
+    ///
+    /// # Panics
+    /// If ring `id` does not exist (see [`ContourSet::contains`]).
     pub fn ring_vertices(&self, id: ContourId) -> Vec<VertexId> {
         self.walk(self.ring(id.0).anchor).collect()
     }
@@ -375,6 +394,9 @@ impl ContourSet {
         }
     }
     /// The positions of a ring in order.
+    ///
+    /// # Panics
+    /// If ring `id` does not exist (see [`ContourSet::contains`]).
     pub fn ring_points(&self, id: ContourId) -> Vec<Point> {
         self.ring_vertices(id)
             .into_iter()
@@ -382,14 +404,23 @@ impl ContourSet {
             .collect()
     }
     /// Signed area of a ring (negative for holes).
+    ///
+    /// # Panics
+    /// If ring `id` does not exist (see [`ContourSet::contains`]).
     pub fn signed_area(&self, id: ContourId) -> f64 {
         0.5 * self.ring(id.0).area2
     }
     /// Number of vertices of a ring.
+    ///
+    /// # Panics
+    /// If ring `id` does not exist (see [`ContourSet::contains`]).
     pub fn ring_len(&self, id: ContourId) -> usize {
         self.ring(id.0).len as usize
     }
     /// Whether a ring bounds a hole.
+    ///
+    /// # Panics
+    /// If ring `id` does not exist (see [`ContourSet::contains`]).
     pub fn is_hole(&self, id: ContourId) -> bool {
         !self.loop_is_outer(self.ring(id.0).anchor, self.ring(id.0).area2)
     }

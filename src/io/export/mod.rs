@@ -1,0 +1,90 @@
+//! Exports of a segmentation, as bytes in memory ([`super::atomic`] writes them): one
+//! file per format — `json.rs` (the CLI contract), `raster.rs` (mask, label image,
+//! overlay), `svg.rs`, `geojson.rs` (QuPath), `csv.rs` — over one bundle, [`Outputs`].
+
+mod csv;
+mod geojson;
+mod json;
+mod raster;
+mod svg;
+
+use crate::contours::ContourSet;
+use crate::evolution::{Evolver, FrameEvent};
+use crate::io::PixelSize;
+
+/// The finished segmentation, ready to export.
+pub struct Outputs<'a> {
+    /// The contours.
+    pub set: &'a ContourSet,
+    /// Image width, pixels.
+    pub width: usize,
+    /// Image height, pixels.
+    pub height: usize,
+    /// Frames run.
+    pub frames: usize,
+    /// Whether the run converged.
+    pub converged: bool,
+    /// The topology events with their frames.
+    pub events: &'a [FrameEvent],
+    /// The image's file name (recorded in the JSON and the CSV).
+    pub image: &'a str,
+    /// The parameters of the run (recorded in the JSON; `mode` names the engine).
+    pub params: &'a crate::evolution::Params,
+    /// Places where a topology-keeping engine held fronts apart (0 when adaptive).
+    pub held: usize,
+    /// The physical size of a pixel, if known: the CSV adds calibrated measurements.
+    pub pixel: Option<PixelSize>,
+}
+
+impl<'a> Outputs<'a> {
+    /// The run of `ev` on the image `name` (a file name), with the contours `set` (the
+    /// evolver's, or a filtered copy): the one place both the CLI and the app build it.
+    pub fn of(ev: &'a Evolver, set: &'a ContourSet, name: &'a str) -> Self {
+        let (width, height) = ev.size();
+        Outputs {
+            set,
+            width,
+            height,
+            frames: ev.frames(),
+            converged: ev.is_converged(),
+            events: ev.events(),
+            image: name,
+            params: ev.params(),
+            held: ev.held_contacts(),
+            pixel: None,
+        }
+    }
+
+    /// The same outputs with a known pixel size (or none).
+    pub fn with_pixel_size(mut self, pixel: Option<PixelSize>) -> Self {
+        self.pixel = pixel;
+        self
+    }
+}
+
+pub(crate) fn fmt(v: f64) -> String {
+    // Three decimals: sub-pixel, and stable across platforms.
+    let s = format!("{v:.3}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.into()
+    }
+}
+
+/// `text` as one CSV field: in double quotes, inner quotes doubled.
+pub fn csv_quoted(text: &str) -> String {
+    format!("\"{}\"", text.replace('"', "\"\""))
+}
+
+/// Distinct colours for neighbouring labels (Okabe–Ito, readable by colour-blind users).
+pub(crate) const PALETTE: [[u8; 3]; 7] = [
+    [230, 159, 0],
+    [86, 180, 233],
+    [0, 158, 115],
+    [240, 228, 66],
+    [0, 114, 178],
+    [213, 94, 0],
+    [204, 121, 167],
+];
