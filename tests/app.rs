@@ -139,7 +139,7 @@ fn export_writes_an_svg_that_parses_and_reset_clears() {
         h.get_by_label("Step 10").click();
         h.step();
     }
-    let path = std::env::temp_dir().join(format!("topocontour-app-{}.svg", std::process::id()));
+    let path = temp("app.svg");
     h.state_mut()
         .send(Command::Export(ExportKind::Svg, path.clone()));
     h.step();
@@ -347,17 +347,11 @@ fn session_save_then_open_gives_the_same_state() {
     app.send(Command::Step(25));
     let mut h = harness(app);
     h.step();
-    let path = std::env::temp_dir().join(format!(
-        "topocontour-app-{}.session.json",
-        std::process::id()
-    ));
-    h.state_mut().send(Command::SaveSession(path.clone()));
-    h.step();
-    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    let path = save_session(&mut h, "app.session.json");
     let before = h.state();
     let (shapes, settings, shown) = (before.shapes.clone(), before.settings.clone(), before.shown);
     let contours = |a: &TopoApp| {
-        let set = a.run.as_ref().unwrap().evolver.contours();
+        let set = evolver(a).contours();
         (set.contour_count(), set.vertex_count(), set.region_area())
     };
     let want = contours(before);
@@ -479,8 +473,7 @@ fn a_twelve_bit_image_opens_with_its_own_contrast() {
     let img = image::ImageBuffer::<image::Luma<u16>, _>::from_fn(64, 48, |x, y| {
         image::Luma([((x * 61 + y * 13) % 4096) as u16])
     });
-    let path =
-        std::env::temp_dir().join(format!("topocontour-app-12bit-{}.tif", std::process::id()));
+    let path = temp("app-12bit.tif");
     img.save(&path).unwrap();
     let mut app = TopoApp::default();
     app.send(Command::OpenImage(path));
@@ -506,9 +499,33 @@ fn bright_bridge_with_seeds(disks: &[(f64, f64, f64)]) -> TopoApp {
     app
 }
 
+/// A path in the temporary folder, unique to this test process.
+fn temp(name: &str) -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("topocontour-{}-{name}", std::process::id()))
+}
+
+/// Saves the session of `h` to a temporary file, checking no error showed; its path.
+fn save_session(h: &mut Harness<'_, TopoApp>, name: &str) -> std::path::PathBuf {
+    let path = temp(name);
+    h.state_mut().send(Command::SaveSession(path.clone()));
+    h.step();
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    path
+}
+
+/// The evolver of the run on screen.
+fn evolver(app: &TopoApp) -> &topocontour::evolution::Evolver {
+    &app.run.as_ref().expect("a run").evolver
+}
+
+/// How many contours the run on screen has now.
+fn contour_count(h: &Harness<'_, TopoApp>) -> usize {
+    evolver(h.state()).contours().contour_count()
+}
+
 /// The vertex of the run's contours nearest to `p`.
 fn vertex_near(app: &TopoApp, p: topocontour::Point) -> u32 {
-    let set = app.run.as_ref().expect("a run").evolver.contours();
+    let set = evolver(app).contours();
     set.vertices()
         .min_by(|&a, &b| set.position(a).dist(p).total_cmp(&set.position(b).dist(p)))
         .unwrap()
@@ -525,16 +542,7 @@ fn hand_edits_merge_and_split_exactly() {
     app.send(Command::SeekFrame(0));
     let mut h = harness(app);
     h.step();
-    let count = |h: &Harness<'_, TopoApp>| {
-        h.state()
-            .run
-            .as_ref()
-            .unwrap()
-            .evolver
-            .contours()
-            .contour_count()
-    };
-    assert_eq!(count(&h), 2);
+    assert_eq!(contour_count(&h), 2);
     // Merge: drag the right-most vertex of the left disk into the right one, in steps.
     let v = vertex_near(h.state(), Point::new(50.0, 64.0));
     for k in 1..=5 {
@@ -544,7 +552,7 @@ fn hand_edits_merge_and_split_exactly() {
         });
         h.step();
     }
-    assert_eq!(count(&h), 1, "merged");
+    assert_eq!(contour_count(&h), 1, "merged");
     assert!(h
         .state()
         .log
@@ -552,7 +560,7 @@ fn hand_edits_merge_and_split_exactly() {
         .any(|(f, e)| *f == 0 && matches!(e, TopologyEvent::Merge { .. })));
     h.state_mut().send(Command::Undo);
     h.step();
-    assert_eq!(count(&h), 2, "undo takes the whole drag back");
+    assert_eq!(contour_count(&h), 2, "undo takes the whole drag back");
 
     // Split: a long rectangle, its top middle vertex dragged down through the bottom.
     h.state_mut().send(Command::Reset);
@@ -565,35 +573,21 @@ fn hand_edits_merge_and_split_exactly() {
     h.state_mut().send(Command::Step(1));
     h.state_mut().send(Command::SeekFrame(0));
     h.step();
-    assert_eq!(count(&h), 1);
+    assert_eq!(contour_count(&h), 1);
     let v = vertex_near(h.state(), Point::new(64.0, 50.0));
-    let from = h
-        .state()
-        .run
-        .as_ref()
-        .unwrap()
-        .evolver
-        .contours()
-        .position(v);
+    let from = evolver(h.state()).contours().position(v);
     h.state_mut().send(Command::HandMove {
         vertex: v,
         to: Point::new(from.x, 80.0),
     });
     h.step();
-    assert_eq!(count(&h), 2, "split");
+    assert_eq!(contour_count(&h), 2, "split");
     assert!(h
         .state()
         .log
         .iter()
         .any(|(_, e)| matches!(e, TopologyEvent::Split { .. })));
-    h.state()
-        .run
-        .as_ref()
-        .unwrap()
-        .evolver
-        .contours()
-        .sanity_check()
-        .unwrap();
+    evolver(h.state()).contours().sanity_check().unwrap();
 }
 
 /// A change of forces goes on from the frame on screen: the frames before it stay, the
@@ -632,7 +626,7 @@ fn a_force_change_continues_from_the_frame_on_screen() {
     h.step();
     let app = h.state();
     assert_eq!(app.settings.weights.stretch, 0.2, "old forces back");
-    assert!(app.run.as_ref().unwrap().evolver.edits().is_empty());
+    assert!(evolver(app).edits().is_empty());
     assert_eq!(app.shown, at);
 }
 
@@ -661,21 +655,15 @@ fn a_session_replays_hand_edits_and_force_changes() {
     });
     h.state_mut().send(Command::Step(4));
     h.step();
-    let path = std::env::temp_dir().join(format!(
-        "topocontour-app-edits-{}.session.json",
-        std::process::id()
-    ));
-    h.state_mut().send(Command::SaveSession(path.clone()));
-    h.step();
-    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    let path = save_session(&mut h, "app-edits.session.json");
     let points = |a: &TopoApp| {
-        let set = a.run.as_ref().unwrap().evolver.contours();
+        let set = evolver(a).contours();
         set.contour_ids()
             .map(|id| set.ring_points(id))
             .collect::<Vec<_>>()
     };
     let want = points(h.state());
-    assert!(h.state().run.as_ref().unwrap().evolver.edits().len() >= 2);
+    assert!(evolver(h.state()).edits().len() >= 2);
     let mut other = harness(TopoApp::default());
     other.step();
     other.state_mut().send(Command::OpenSession(path.clone()));
@@ -709,7 +697,7 @@ fn the_object_table_is_linked_to_the_canvas() {
     let mut h = harness(app);
     h.step();
     h.step();
-    let set = h.state().run.as_ref().unwrap().evolver.contours().clone();
+    let set = evolver(h.state()).contours().clone();
     let regions = topocontour::evolution::regions(&set);
     assert!(regions.len() >= 2, "the sample has several cells");
     // The largest region: the table's first row.
@@ -753,7 +741,7 @@ fn the_path_field_stands_in_for_a_file_dialog() {
         ExportKind::Labels.default_name("image.png"),
         "image.labels.tif"
     );
-    let out = std::env::temp_dir().join(format!("topocontour-prompt-{}.svg", std::process::id()));
+    let out = temp("prompt.svg");
     h.state_mut().send(Command::WrapBorder(4.0));
     h.state_mut().send(Command::Step(2));
     h.step();
@@ -777,8 +765,7 @@ fn the_path_field_stands_in_for_a_file_dialog() {
 fn a_tiff_stack_opens_with_its_pages_and_pixel_size() {
     use tiff::encoder::{colortype::Gray8, Rational, TiffEncoder};
     use tiff::tags::ResolutionUnit;
-    let path =
-        std::env::temp_dir().join(format!("topocontour-app-stack-{}.tif", std::process::id()));
+    let path = temp("app-stack.tif");
     {
         let mut enc = TiffEncoder::new(std::fs::File::create(&path).unwrap()).unwrap();
         for k in 0..3u32 {
@@ -808,8 +795,7 @@ fn a_tiff_stack_opens_with_its_pages_and_pixel_size() {
     assert!(mean(h.state()) < first, "page 3 is darker");
     assert_eq!(h.state().shapes.len(), 1, "shapes stay");
     h.state_mut().send(Command::Step(3));
-    let csv =
-        std::env::temp_dir().join(format!("topocontour-app-stack-{}.csv", std::process::id()));
+    let csv = temp("app-stack.csv");
     h.state_mut().send(Command::Export(
         topocontour::app::ExportKind::Csv,
         csv.clone(),
@@ -836,16 +822,7 @@ fn a_brush_stroke_merges_and_undoes_as_one_step() {
     app.send(Command::SeekFrame(0));
     let mut h = harness(app);
     h.step();
-    let count = |h: &Harness<'_, TopoApp>| {
-        h.state()
-            .run
-            .as_ref()
-            .unwrap()
-            .evolver
-            .contours()
-            .contour_count()
-    };
-    assert_eq!(count(&h), 2);
+    assert_eq!(contour_count(&h), 2);
     for k in 0..5 {
         let x = 40.0 + 4.0 * k as f64;
         h.state_mut().send(Command::Brush {
@@ -856,7 +833,7 @@ fn a_brush_stroke_merges_and_undoes_as_one_step() {
         });
         h.step();
     }
-    assert_eq!(count(&h), 1, "merged");
+    assert_eq!(contour_count(&h), 1, "merged");
     assert!(h
         .state()
         .log
@@ -864,7 +841,7 @@ fn a_brush_stroke_merges_and_undoes_as_one_step() {
         .any(|(_, e)| matches!(e, TopologyEvent::Merge { .. })));
     h.state_mut().send(Command::Undo);
     h.step();
-    assert_eq!(count(&h), 2, "one undo takes the whole stroke back");
+    assert_eq!(contour_count(&h), 2, "one undo takes the whole stroke back");
 }
 
 /// "Apply to folder…" segments every image of a folder in the background (the window
@@ -872,7 +849,7 @@ fn a_brush_stroke_merges_and_undoes_as_one_step() {
 /// summary.csv into the folder's topocontour subfolder.
 #[test]
 fn apply_to_folder_runs_in_the_background() {
-    let dir = std::env::temp_dir().join(format!("topocontour-app-folder-{}", std::process::id()));
+    let dir = temp("app-folder");
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     for (i, case) in ["bridge_merge", "blobs_wrap", "ring_seed"]
@@ -919,8 +896,7 @@ fn a_large_image_is_prepared_in_the_background() {
         let (dx, dy) = (x as f64 - 800.0, y as f64 - 700.0);
         image::Luma([if dx.hypot(dy) < 300.0 { 40 } else { 200 }])
     });
-    let path =
-        std::env::temp_dir().join(format!("topocontour-app-large-{}.png", std::process::id()));
+    let path = temp("app-large.png");
     img.save(&path).unwrap();
     let mut app = TopoApp::default();
     app.send(Command::OpenImage(path.clone()));

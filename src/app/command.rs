@@ -212,6 +212,15 @@ impl TopoApp {
         }
     }
 
+    /// A file dialog opening in the folder of the last file opened.
+    fn dialog(&self) -> rfd::FileDialog {
+        let d = rfd::FileDialog::new();
+        match &self.settings.last_dir {
+            Some(dir) => d.set_directory(dir),
+            None => d,
+        }
+    }
+
     /// The one place the document changes: records an undo step when the command starts
     /// one, then hands the command to its group's handler.
     pub(super) fn apply_now(&mut self, c: Command) {
@@ -495,10 +504,7 @@ impl TopoApp {
         match c {
             Command::OpenImage(p) => match crate::io::load_image_page(&p, 0) {
                 Ok((f, info)) => {
-                    let name = p
-                        .file_name()
-                        .map(|n| n.to_string_lossy().into_owned())
-                        .unwrap_or_default();
+                    let name = crate::io::folder::file_name(&p);
                     self.settings.last_dir = p.parent().map(Path::to_path_buf);
                     self.set_image(f, name);
                     self.image_path = Some(p);
@@ -518,11 +524,9 @@ impl TopoApp {
                 Err(e) => self.error = Some(e.into()),
             },
             Command::OpenDialog => {
-                let mut d = rfd::FileDialog::new()
+                let d = self
+                    .dialog()
                     .add_filter("images", &["png", "jpg", "jpeg", "tif", "tiff"]);
-                if let Some(dir) = &self.settings.last_dir {
-                    d = d.set_directory(dir);
-                }
                 match d.pick_file() {
                     Some(p) => self.apply_now(Command::OpenImage(p)),
                     None => self.prompt_path(PathPurpose::OpenImage, String::new()),
@@ -537,22 +541,17 @@ impl TopoApp {
             }
             Command::ExportDialog(kind) => {
                 let name = kind.default_name(&self.image_name);
-                let mut d = rfd::FileDialog::new()
+                let d = self
+                    .dialog()
                     .add_filter(kind.extension(), &[kind.extension()])
                     .set_file_name(&name);
-                if let Some(dir) = &self.settings.last_dir {
-                    d = d.set_directory(dir);
-                }
                 match d.save_file() {
                     Some(p) => self.apply_now(Command::Export(kind, p)),
                     None => self.prompt_path(PathPurpose::Export(kind), name),
                 }
             }
             Command::SessionDialog(save) => {
-                let mut d = rfd::FileDialog::new().add_filter("sessions", &["json"]);
-                if let Some(dir) = &self.settings.last_dir {
-                    d = d.set_directory(dir);
-                }
+                let d = self.dialog().add_filter("sessions", &["json"]);
                 let name = format!(
                     "{}.session.json",
                     super::path_prompt::stem(&self.image_name)
@@ -570,16 +569,10 @@ impl TopoApp {
                 }
             }
             Command::ApplyToFolder(dir) => self.apply_to_folder(&dir),
-            Command::ApplyToFolderDialog => {
-                let mut d = rfd::FileDialog::new();
-                if let Some(dir) = &self.settings.last_dir {
-                    d = d.set_directory(dir);
-                }
-                match d.pick_folder() {
-                    Some(p) => self.apply_now(Command::ApplyToFolder(p)),
-                    None => self.prompt_path(PathPurpose::ApplyToFolder, String::new()),
-                }
-            }
+            Command::ApplyToFolderDialog => match self.dialog().pick_folder() {
+                Some(p) => self.apply_now(Command::ApplyToFolder(p)),
+                None => self.prompt_path(PathPurpose::ApplyToFolder, String::new()),
+            },
             Command::CancelFolder => {
                 if let Some(f) = &self.folder {
                     f.cancel();

@@ -161,75 +161,105 @@ fn tools_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
 
 /// What the image shows: object polarity and the kind of image.
 fn image_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
-    let polarity = app.settings.polarity;
-    for (label, p) in [
+    let polarity = [
         ("Dark objects", Polarity::Dark),
         ("Bright objects", Polarity::Bright),
-    ] {
-        if ui
-            .selectable_label(polarity == p, label)
-            .on_hover_text("whether the objects are darker or brighter than the background (fluorescence: bright)")
-            .clicked()
-            && polarity != p
-        {
-            app.send(Command::SetPolarity(p));
-        }
+    ];
+    let tip =
+        "whether the objects are darker or brighter than the background (fluorescence: bright)";
+    if let Some(p) = choice_row(ui, app.settings.polarity, &polarity, tip) {
+        app.send(Command::SetPolarity(p));
     }
     let modality = app.settings.modality;
-    egui::ComboBox::from_id_salt("modality")
-        .selected_text(format!("image: {}", modality.name()))
-        .show_ui(ui, |ui| {
-            for m in [
-                Modality::Generic,
-                Modality::Fluorescence,
-                Modality::PhaseContrast,
-                Modality::Brightfield,
-            ] {
-                if ui.selectable_label(modality == m, m.name()).clicked() && modality != m {
-                    app.send(Command::SetModality(m));
-                }
-            }
-        })
-        .response
-        .on_hover_text("the kind of image: fluorescence finds dim objects beside bright ones; phase contrast treats the bright halo around cells as background");
+    let kinds = [
+        Modality::Generic,
+        Modality::Fluorescence,
+        Modality::PhaseContrast,
+        Modality::Brightfield,
+    ];
+    let text = format!("image: {}", modality.name());
+    let tip = "the kind of image: fluorescence finds dim objects beside bright ones; phase contrast treats the bright halo around cells as background";
+    if let Some(m) = choice_combo(ui, "modality", text, modality, &kinds, Modality::name, tip) {
+        app.send(Command::SetModality(m));
+    }
 }
 
 /// The engine, and a second one side by side.
 fn engine_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
     use crate::evolution::Mode;
-    let mode = app.settings.mode;
-    for (label, m) in [
+    let modes = [
         ("Adaptive", Mode::Adaptive),
         ("Preserve", Mode::Preserve),
         ("Implicit", Mode::Implicit),
-    ] {
-        if ui
-            .selectable_label(mode == m, label)
-            .on_hover_text("engine: adaptive topology; or keep the initial topology (preserve: explicit with a gap; implicit: fast marching with sub-pixel contact lines)")
-            .clicked()
-            && mode != m
-        {
-            app.send(Command::SetMode(m));
-        }
+    ];
+    let tip = "engine: adaptive topology; or keep the initial topology (preserve: explicit with a gap; implicit: fast marching with sub-pixel contact lines)";
+    if let Some(m) = choice_row(ui, app.settings.mode, &modes, tip) {
+        app.send(Command::SetMode(m));
     }
     let compare = app.settings.compare;
     let name = |m: Option<Mode>| m.map_or("none", |m| m.name());
-    egui::ComboBox::from_id_salt("compare")
-        .selected_text(format!("beside: {}", name(compare)))
+    let beside = [
+        None,
+        Some(Mode::Adaptive),
+        Some(Mode::Preserve),
+        Some(Mode::Implicit),
+    ];
+    let text = format!("beside: {}", name(compare));
+    let tip = "run a second engine side by side on the same image and shapes";
+    if let Some(m) = choice_combo(ui, "compare", text, compare, &beside, name, tip) {
+        app.send(Command::SetCompare(m));
+    }
+}
+
+/// A row of selectable labels, one per option; the option clicked, if it is not `current`.
+fn choice_row<T: PartialEq + Copy>(
+    ui: &mut egui::Ui,
+    current: T,
+    options: &[(&str, T)],
+    tip: &str,
+) -> Option<T> {
+    let mut chosen = None;
+    for &(label, option) in options {
+        if ui
+            .selectable_label(current == option, label)
+            .on_hover_text(tip)
+            .clicked()
+            && current != option
+        {
+            chosen = Some(option);
+        }
+    }
+    chosen
+}
+
+/// A combo box showing `text` with one entry per option, named by `name`; the option
+/// chosen, if it is not `current`.
+fn choice_combo<T: PartialEq + Copy>(
+    ui: &mut egui::Ui,
+    id: &str,
+    text: String,
+    current: T,
+    options: &[T],
+    name: impl Fn(T) -> &'static str,
+    tip: &str,
+) -> Option<T> {
+    let mut chosen = None;
+    egui::ComboBox::from_id_salt(id)
+        .selected_text(text)
         .show_ui(ui, |ui| {
-            for m in [
-                None,
-                Some(Mode::Adaptive),
-                Some(Mode::Preserve),
-                Some(Mode::Implicit),
-            ] {
-                if ui.selectable_label(compare == m, name(m)).clicked() && compare != m {
-                    app.send(Command::SetCompare(m));
+            for &option in options {
+                if ui
+                    .selectable_label(current == option, name(option))
+                    .clicked()
+                    && current != option
+                {
+                    chosen = Some(option);
                 }
             }
         })
         .response
-        .on_hover_text("run a second engine side by side on the same image and shapes");
+        .on_hover_text(tip);
+    chosen
 }
 
 /// Play or pause, step, next event, reset and the playback speed.

@@ -55,10 +55,7 @@ pub struct PathPrompt {
 /// The name of `image` without its extension (and without " (sample)").
 pub fn stem(image: &str) -> String {
     let name = image.trim_end_matches(" (sample)");
-    let stem = std::path::Path::new(name)
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
+    let stem = crate::io::folder::stem(std::path::Path::new(name));
     if stem.is_empty() {
         "contours".into()
     } else {

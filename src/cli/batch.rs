@@ -9,10 +9,10 @@
 //! regular files ending in .png, .jpg, .jpeg, .tif or .tiff (not its subfolders), in
 //! name order.
 
-use super::run::{evolve, file_name, RunSettings};
+use super::run::{evolve, RunSettings};
 use super::segment::write_outputs;
 use super::{bad, note, Failure, Format};
-use crate::io::folder::{list_images, summary_rows, SUMMARY_HEADER};
+use crate::io::folder::{file_name, list_images, stem, summary_rows, SUMMARY_HEADER};
 use crate::io::{OutputFiles, Outputs};
 use clap::Args;
 use rayon::prelude::*;
@@ -127,10 +127,7 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
 
 /// Segments one image and writes its outputs; returns its summary rows.
 fn one_image(img: &Path, a: &BatchArgs) -> ImageResult {
-    let stem = img
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
+    let stem = stem(img);
     let paths: Vec<PathBuf> = a
         .formats
         .iter()

@@ -70,10 +70,7 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
             contours = ev.contours().contour_count();
         }
         times.sort_by(f64::total_cmp);
-        let name = d
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
+        let name = crate::io::folder::file_name(&d);
         if writeln!(
             stdout,
             "{:<18} {:>8.1} {:>8.1} {:>8.1} {:>7} {:>9}",

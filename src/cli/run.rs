@@ -265,10 +265,3 @@ pub(super) fn evolve(path: &Path, a: &RunSettings) -> Result<Evolved, Failure> {
         page,
     })
 }
-
-/// The file name of `path` (what outputs record of the image).
-pub(super) fn file_name(path: &Path) -> String {
-    path.file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default()
-}

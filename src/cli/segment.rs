@@ -1,9 +1,10 @@
 //! `topocontour segment IMAGE …`: one image, the outputs the flags name, all written or
 //! none; and the evaluation case folders' `case.json`.
 
-use super::run::{evolve, file_name, Evolved, RunSettings};
+use super::run::{evolve, Evolved, RunSettings};
 use super::{bad, note, Failure};
 use crate::evolution::{Evolver, Modality, Polarity};
+use crate::io::folder::file_name;
 use crate::io::session::Session;
 use crate::io::{OutputFiles, Outputs};
 use clap::{Args, ValueEnum};

@@ -29,6 +29,13 @@ pub fn list_images(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     Ok(images)
 }
 
+/// The file name of `path` (what outputs record of an image).
+pub fn file_name(path: &Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
 /// The name of `path` without its extension.
 pub fn stem(path: &Path) -> String {
     path.file_stem()
@@ -102,10 +109,7 @@ impl FolderJob {
             Evolver::new(&image, &shapes, self.params.clone()).map_err(|e| e.to_string())?;
         ev.run();
         ev.filter_clutter();
-        let name = img
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
+        let name = file_name(img);
         let out = Outputs::of(&ev, ev.contours(), &name).with_pixel_size(info.pixel_size);
         files
             .commit(vec![out.json().into_bytes(), out.csv().into_bytes()])
