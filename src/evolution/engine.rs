@@ -66,6 +66,9 @@ pub trait Engine {
     /// New force weights and step for the frames to come (the implicit engine's speeds
     /// come from the intensity model alone: nothing changes there).
     fn set_forces(&mut self, weights: ForceWeights, step: f64);
+    /// Opens holes where the region covers clear background on pyramid level `level`
+    /// (only the adaptive engine; see [`super::explicit::nucleate`]); returns the events.
+    fn nucleate(&mut self, level: usize) -> Vec<TopologyEvent>;
 }
 
 /// The three engines, dispatched by enum.
@@ -113,5 +116,8 @@ impl Engine for Engines {
     }
     fn set_forces(&mut self, weights: ForceWeights, step: f64) {
         each!(self, e => e.set_forces(weights, step))
+    }
+    fn nucleate(&mut self, level: usize) -> Vec<TopologyEvent> {
+        each!(self, e => e.nucleate(level))
     }
 }

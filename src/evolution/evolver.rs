@@ -91,6 +91,11 @@ impl Edit {
     }
 }
 
+/// How many times the finest level may settle, open holes and run again: each round
+/// opens holes only where the last one left clear background, so two suffice; the bound
+/// keeps a run finite whatever the image.
+const REOPEN_ROUNDS: usize = 2;
+
 /// Runs the evolution.
 #[derive(Clone)]
 pub struct Evolver {
@@ -104,6 +109,8 @@ pub struct Evolver {
     edits: Vec<Edit>,
     /// The parameters the run started with (force changes update `params`).
     start_params: Params,
+    /// Times the finest level settled and holes opened after it.
+    reopened: usize,
     width: usize,
     height: usize,
 }
@@ -162,6 +169,7 @@ impl Evolver {
             events: Vec::new(),
             edits: Vec::new(),
             start_params,
+            reopened: 0,
             width: image.width,
             height: image.height,
         })
@@ -244,12 +252,31 @@ impl Evolver {
             if let Some(level) = judged {
                 let events = self.engine.refine(level);
                 self.log_events(&events);
+                self.open_holes(level);
+            } else if self.schedule.converged
+                && self.reopened < REOPEN_ROUNDS
+                && self.open_holes(0)
+            {
+                // The holes grow on: the finest level runs again.
+                self.reopened += 1;
+                self.schedule.resume();
             }
         }
         self.log_events(&frame.events);
         frame.level = self.schedule.level;
         frame.converged = self.schedule.converged;
         frame
+    }
+
+    /// Opens holes in clear background inside the region (adaptive engine, when the
+    /// parameters allow it); logs them and says whether any opened.
+    fn open_holes(&mut self, level: usize) -> bool {
+        if !self.params.open_holes {
+            return false;
+        }
+        let events = self.engine.nucleate(level);
+        self.log_events(&events);
+        !events.is_empty()
     }
 
     /// Runs until converged or out of frames.

@@ -64,6 +64,14 @@ pub struct Params {
     /// Radius of the local statistics in pixels; `None`: from the seeds or the image.
     #[serde(default)]
     pub local_radius: Option<f64>,
+    /// In the adaptive engine, open holes where a region covers clear background (see
+    /// [`super::explicit::nucleate`]).
+    #[serde(default = "default_open_holes")]
+    pub open_holes: bool,
+}
+
+fn default_open_holes() -> bool {
+    true
 }
 
 fn default_local() -> bool {
@@ -89,6 +97,7 @@ impl Default for Params {
             modality: Modality::Generic,
             local: true,
             local_radius: None,
+            open_holes: true,
         }
     }
 }

@@ -21,6 +21,7 @@
 
 mod hand;
 mod motion;
+pub mod nucleate;
 
 pub use motion::{Adaptive, Motion, Preserve, PRESERVE_GAP};
 
@@ -230,6 +231,23 @@ impl<M: Motion> Engine for Explicit<M> {
     }
     fn held_contacts(&self, level: usize) -> usize {
         M::held(&self.set, Pyramid::scale(level))
+    }
+    fn nucleate(&mut self, level: usize) -> Vec<TopologyEvent> {
+        if !M::ADAPTS {
+            return Vec::new();
+        }
+        let events = nucleate::nucleate(
+            &mut self.set,
+            &self.pyramid.levels[level],
+            self.decision.get(level),
+            &self.model,
+            Pyramid::scale(level),
+        );
+        if !events.is_empty() {
+            // New rings may reuse slots of vertices that were resting.
+            self.still.iter_mut().for_each(|s| *s = 0);
+        }
+        events
     }
     fn set_forces(&mut self, weights: ForceWeights, step: f64) {
         self.weights = weights;

@@ -19,6 +19,8 @@ pub const PRESERVE_GAP: f64 = 0.3;
 
 /// How the explicit engine moves vertices (static dispatch: no cost per move).
 pub trait Motion: Clone + Default + Send + Sync + 'static {
+    /// Whether contours may change topology (and so open holes in clear background).
+    const ADAPTS: bool;
     /// The gap contours keep at grid spacing `scale` (`None`: contours may meet).
     fn gap(scale: f64) -> Option<f64>;
     /// Extra displacement of `v` in units of the step, if the engine pushes.
@@ -51,6 +53,7 @@ pub struct Adaptive;
 pub struct Preserve;
 
 impl Motion for Adaptive {
+    const ADAPTS: bool = true;
     #[inline]
     fn gap(_: f64) -> Option<f64> {
         None
@@ -94,6 +97,7 @@ impl Motion for Adaptive {
 }
 
 impl Motion for Preserve {
+    const ADAPTS: bool = false;
     #[inline]
     fn gap(scale: f64) -> Option<f64> {
         Some(PRESERVE_GAP * scale)

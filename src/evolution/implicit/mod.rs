@@ -345,6 +345,9 @@ impl Engine for ImplicitEngine {
         self.state.cuts + self.state.rejected
     }
     fn set_forces(&mut self, _: super::forces::ForceWeights, _: f64) {}
+    fn nucleate(&mut self, _: usize) -> Vec<TopologyEvent> {
+        Vec::new()
+    }
 }
 
 /// Marks the pixels whose centres lie inside `shape`.

@@ -3,7 +3,7 @@
 
 use super::{Outputs, PALETTE};
 use crate::evolution::regions;
-use crate::geometry::Point;
+use crate::geometry::{fill_even_odd, Point};
 
 impl Outputs<'_> {
     /// Inside (255) where a pixel's centre lies in the region, by scanline over all rings
@@ -118,45 +118,6 @@ impl Outputs<'_> {
     }
 }
 
-/// Calls `set` for every pixel whose centre lies inside `rings` by the even-odd rule,
-/// scanline by scanline; edges are bucketed by the rows they span, so the cost is linear
-/// in the output size.
-fn fill_even_odd(rings: &[Vec<Point>], w: usize, h: usize, mut set: impl FnMut(usize)) {
-    let mut rows: Vec<Vec<(Point, Point)>> = vec![Vec::new(); h];
-    for r in rings {
-        for i in 0..r.len() {
-            let (a, b) = (r[i], r[(i + 1) % r.len()]);
-            let (y0, y1) = (a.y.min(b.y), a.y.max(b.y));
-            let lo = (y0 - 0.5).ceil().max(0.0) as usize;
-            let hi = ((y1 - 0.5).floor()).min(h as f64 - 1.0);
-            if hi < 0.0 {
-                continue;
-            }
-            for row in rows.iter_mut().take(hi as usize + 1).skip(lo) {
-                row.push((a, b));
-            }
-        }
-    }
-    let mut xs: Vec<f64> = Vec::new();
-    for (y, row) in rows.iter().enumerate() {
-        let yc = y as f64 + 0.5;
-        xs.clear();
-        for &(a, b) in row {
-            if (a.y > yc) != (b.y > yc) {
-                xs.push(a.x + (yc - a.y) * (b.x - a.x) / (b.y - a.y));
-            }
-        }
-        xs.sort_by(f64::total_cmp);
-        for pair in xs.chunks_exact(2) {
-            // Pixels whose centre x + 0.5 lies in [x0, x1).
-            let x0 = (pair[0] - 0.5).ceil().max(0.0) as usize;
-            let x1 = ((pair[1] - 0.5).ceil().max(0.0) as usize).min(w);
-            for x in x0..x1 {
-                set(y * w + x);
-            }
-        }
-    }
-}
 
 /// A one-pixel line from `a` to `b` (pixel coordinates), sampled every half pixel.
 fn draw_segment(rgb: &mut [u8], w: usize, h: usize, a: Point, b: Point, c: [u8; 3]) {

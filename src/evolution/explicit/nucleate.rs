@@ -1,0 +1,151 @@
+//! Hole nucleation: the adaptive engine opens a hole where its region covers clear
+//! background.
+//!
+//! Seed 003's contours change topology only where fronts meet, so a contour cannot open
+//! a hole in the middle of its region by itself: a wrap shrinking over a ring-shaped
+//! object stops on its outside and never finds the hole, and a wrap over touching
+//! phase-contrast cells would have to push a finger down each narrow channel between
+//! them against the contour's own smoothing. A level set (Chan–Vese) opens such holes
+//! wherever the region term says background; this is the explicit counterpart. When a
+//! pyramid level is done, the region is filled on that level's pixel grid; pixels well
+//! inside it (their eight neighbours inside too) whose region score is at most
+//! −[`NUCLEATE_SCORE`] form connected pieces, and each piece of at least
+//! [`NUCLEATE_PIXELS`] pixels gets a small hole ring at its most background-like pixel.
+//! The hole is an ordinary ring: the region force grows it over the background piece,
+//! and where it reaches the outside it opens through the topology core (a split, or a
+//! lost hole), exactly as any other contact.
+//!
+//! Choices: a quarter of the contrast past the level (score −0.5) and four pixels keep
+//! pixel noise from opening holes (the local level keeps at least six noise deviations
+//! from the background, so −0.5 is three deviations, over four pixels at once); only the
+//! adaptive engine nucleates (a new hole is a change of topology).
+
+use super::super::field::Level;
+use super::super::forces::IntensityModel;
+use super::super::local::Decision;
+use crate::contours::ContourSet;
+use crate::geometry::{fill_even_odd, winding_number, Point};
+use crate::topology::TopologyEvent;
+
+/// Region score a pixel must reach (or go below, towards background) to open a hole.
+pub const NUCLEATE_SCORE: f64 = 0.5;
+
+/// Smallest connected piece of background, in pixels of the level, that opens a hole.
+pub const NUCLEATE_PIXELS: usize = 4;
+
+/// Opens a hole ring at each piece of clear background inside the region of `set`, on
+/// pyramid level `field` (`scale` full-resolution pixels per level pixel). Returns the
+/// events (one [`TopologyEvent::HoleMade`] per hole).
+pub fn nucleate(
+    set: &mut ContourSet,
+    field: &Level,
+    decision: Option<&Decision>,
+    model: &IntensityModel,
+    scale: f64,
+) -> Vec<TopologyEvent> {
+    let image = &field.image;
+    let (w, h) = (image.width, image.height);
+    let rings: Vec<Vec<Point>> = set
+        .contour_ids()
+        .map(|id| {
+            set.ring_points(id)
+                .into_iter()
+                .map(|p| p * (1.0 / scale))
+                .collect()
+        })
+        .collect();
+    let mut inside = vec![false; w * h];
+    fill_even_odd(&rings, w, h, |i| inside[i] = true);
+    let score = |i: usize| -> f64 {
+        let v = image.data[i] as f64;
+        match decision {
+            Some(d) => (v - d.level.data[i] as f64) * d.sign / (d.half.data[i] as f64).max(1e-6),
+            None => model.score(v),
+        }
+    };
+    // Candidates: well inside, clearly background.
+    let deep = |i: usize| {
+        let (x, y) = (i % w, i / w);
+        x > 0
+            && y > 0
+            && x + 1 < w
+            && y + 1 < h
+            && (y - 1..=y + 1).all(|yy| (x - 1..=x + 1).all(|xx| inside[yy * w + xx]))
+    };
+    let mut candidate: Vec<bool> = (0..w * h)
+        .map(|i| inside[i] && score(i) <= -NUCLEATE_SCORE && deep(i))
+        .collect();
+    let mut events = Vec::new();
+    let mut stack = Vec::new();
+    for start in 0..w * h {
+        if !candidate[start] {
+            continue;
+        }
+        // One 8-connected piece, cleared as it is visited.
+        candidate[start] = false;
+        stack.push(start);
+        let (mut count, mut best, mut best_score) = (0usize, start, f64::INFINITY);
+        while let Some(i) = stack.pop() {
+            count += 1;
+            let s = score(i);
+            if s < best_score {
+                (best, best_score) = (i, s);
+            }
+            let (x, y) = ((i % w) as isize, (i / w) as isize);
+            for (dx, dy) in NEIGHBOURS {
+                let (nx, ny) = (x + dx, y + dy);
+                if nx < 0 || ny < 0 || nx >= w as isize || ny >= h as isize {
+                    continue;
+                }
+                let j = ny as usize * w + nx as usize;
+                if candidate[j] {
+                    candidate[j] = false;
+                    stack.push(j);
+                }
+            }
+        }
+        if count < NUCLEATE_PIXELS {
+            continue;
+        }
+        let centre = Point::new((best % w) as f64 + 0.5, (best / w) as f64 + 0.5) * scale;
+        if let Some(event) = open_hole(set, centre, 0.4 * scale) {
+            events.push(event);
+        }
+    }
+    events
+}
+
+const NEIGHBOURS: [(isize, isize); 8] = [
+    (-1, -1),
+    (0, -1),
+    (1, -1),
+    (-1, 0),
+    (1, 0),
+    (-1, 1),
+    (0, 1),
+    (1, 1),
+];
+
+/// A square hole ring of half-diagonal `r` around `centre` (clockwise: a hole), unless
+/// it would touch a ring; the event names the ring that encloses it.
+fn open_hole(set: &mut ContourSet, centre: Point, r: f64) -> Option<TopologyEvent> {
+    let enclosing = enclosing_ring(set, centre)?;
+    let ring = [
+        centre + Point::new(0.0, r),
+        centre + Point::new(r, 0.0),
+        centre + Point::new(0.0, -r),
+        centre + Point::new(-r, 0.0),
+    ];
+    let hole = set.add_ring(&ring).ok()?;
+    Some(TopologyEvent::HoleMade {
+        from: enclosing,
+        hole,
+    })
+}
+
+/// The innermost ring around `p` (the smallest that winds round it).
+fn enclosing_ring(set: &ContourSet, p: Point) -> Option<crate::contours::ContourId> {
+    set.contour_ids()
+        .filter(|&id| winding_number(&set.ring_points(id), p) != 0)
+        .min_by(|&a, &b| set.signed_area(a).abs().total_cmp(&set.signed_area(b).abs()))
+}
