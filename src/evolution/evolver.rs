@@ -250,9 +250,11 @@ impl Evolver {
                 .schedule
                 .judge(set, frame.active_share, self.params.converged_share);
             if let Some(level) = judged {
+                // Holes open on the level just finished (a quarter of the pixels of the
+                // next), then the rings are refined for the finer one.
+                self.open_holes(level + 1);
                 let events = self.engine.refine(level);
                 self.log_events(&events);
-                self.open_holes(level);
             } else if self.schedule.converged
                 && self.reopened < REOPEN_ROUNDS
                 && self.open_holes(0)

@@ -54,8 +54,16 @@ pub fn nucleate(
                 .collect()
         })
         .collect();
-    let mut inside = vec![false; w * h];
-    fill_even_odd(&rings, w, h, |i| inside[i] = true);
+    // score ≤ −s  ⇔  sign·(v − level) ≤ −s·half: no division per pixel.
+    let background = |i: usize| -> bool {
+        let v = image.data[i];
+        match decision {
+            Some(d) => {
+                d.sign as f32 * (v - d.level.data[i]) <= -(NUCLEATE_SCORE as f32) * d.half.data[i]
+            }
+            None => model.score(v as f64) <= -NUCLEATE_SCORE,
+        }
+    };
     let score = |i: usize| -> f64 {
         let v = image.data[i] as f64;
         match decision {
@@ -63,7 +71,16 @@ pub fn nucleate(
             None => model.score(v),
         }
     };
-    // Candidates: well inside, clearly background.
+    // Inside, and clearly background (scored only inside; listed, as they are few).
+    let mut inside = vec![false; w * h];
+    let mut listed = Vec::new();
+    fill_even_odd(&rings, w, h, |i| {
+        inside[i] = true;
+        if background(i) {
+            listed.push(i);
+        }
+    });
+    // Well inside: the eight neighbours too.
     let deep = |i: usize| {
         let (x, y) = (i % w, i / w);
         x > 0
@@ -72,12 +89,14 @@ pub fn nucleate(
             && y + 1 < h
             && (y - 1..=y + 1).all(|yy| (x - 1..=x + 1).all(|xx| inside[yy * w + xx]))
     };
-    let mut candidate: Vec<bool> = (0..w * h)
-        .map(|i| inside[i] && score(i) <= -NUCLEATE_SCORE && deep(i))
-        .collect();
+    listed.retain(|&i| deep(i));
+    let mut candidate = vec![false; w * h];
+    for &i in &listed {
+        candidate[i] = true;
+    }
     let mut events = Vec::new();
     let mut stack = Vec::new();
-    for start in 0..w * h {
+    for &start in &listed {
         if !candidate[start] {
             continue;
         }
