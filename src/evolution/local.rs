@@ -263,17 +263,20 @@ pub fn box_mean(f: &Field, r: usize) -> Field {
             ((line[x1] - line[x0]) / (rows as f64 * (x1 - x0) as f64)) as f32
         };
         // Where the window lies whole in the row, one reciprocal serves all.
-        let (lo, hi) = (r.min(w), w.saturating_sub(r + 1).max(r.min(w)));
+        let lo = r.min(w);
+        let hi = w.saturating_sub(r).max(lo);
         let inv = 1.0 / (rows as f64 * (2 * r + 1) as f64);
         for (x, d) in dst.iter_mut().enumerate().take(lo) {
             *d = cut(x);
         }
-        for ((d, &a), &b) in dst[lo..hi]
-            .iter_mut()
-            .zip(&line[lo + r + 1..hi + r + 1])
-            .zip(&line[lo - r..hi - r])
-        {
-            *d = ((a - b) * inv) as f32;
+        if lo < hi {
+            for ((d, &a), &b) in dst[lo..hi]
+                .iter_mut()
+                .zip(&line[lo + r + 1..hi + r + 1])
+                .zip(&line[lo - r..hi - r])
+            {
+                *d = ((a - b) * inv) as f32;
+            }
         }
         for (x, d) in dst.iter_mut().enumerate().skip(hi) {
             *d = cut(x);
