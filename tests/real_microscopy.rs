@@ -1,6 +1,7 @@
 //! The real-image machinery on constructed images: the local decision level against a
-//! brute-force reference, automatic seeds on touching disks of different brightness, and
-//! a phase-contrast wrap that ends on the cell, not on the halo.
+//! brute-force reference, automatic seeds on touching disks of different brightness, a
+//! phase-contrast wrap that ends on the cell, not on the halo, and one that separates
+//! touching cells, and a wrap that opens the hole of a ring.
 
 use proptest::prelude::*;
 use topocontour::evolution::local::{box_extreme, box_mean, decision_field};
@@ -177,4 +178,102 @@ fn phase_contrast_wrap_ends_on_the_cell() {
         (area - cell_area).abs() < 0.1 * cell_area,
         "phase contrast: area {area}, cell {cell_area}"
     );
+}
+
+/// Two rods touching side by side under phase-contrast optics: between them the halo is
+/// a ridge blurred into both cells, darker than halfway to the background. The wrap ends
+/// on two cells (the narrow halo is lifted to background and a hole opens there), each
+/// within 15 % of the area the same rod gets when it lies apart.
+#[test]
+fn phase_contrast_wrap_separates_touching_cells() {
+    let (w, h) = (160usize, 160usize);
+    // Two capsules of half-width 7 whose axes are `gap` apart, blurred by the optics
+    // (about 2.5 px).
+    let rods = |gap: f64| {
+        let rod = |x: f64, y: f64, cy: f64| {
+            let t = ((x - 50.0) / 60.0).clamp(0.0, 1.0);
+            (x - (50.0 + 60.0 * t)).hypot(y - cy) - 7.0
+        };
+        let mut img = image(w, h, |x, y| {
+            let d = rod(x, y, 80.0 - gap / 2.0).min(rod(x, y, 80.0 + gap / 2.0));
+            let cell = 1.0 / (1.0 + (d / 0.7).exp());
+            let halo = 0.45 * (-(d - 3.0).powi(2) / 8.0).exp();
+            (0.5 - 0.4 * cell + halo * (1.0 - cell)) as f32
+        });
+        for _ in 0..6 {
+            img = img.blur5();
+        }
+        img
+    };
+    let wrap = [Shape::Rect {
+        min: Point::new(4.0, 4.0),
+        max: Point::new(w as f64 - 4.0, h as f64 - 4.0),
+    }];
+    let areas = |img: &Field| {
+        let params = Params {
+            polarity: Polarity::Dark,
+            modality: Modality::PhaseContrast,
+            ..Params::default()
+        };
+        let mut ev = Evolver::new(img, &wrap, params).unwrap();
+        ev.run();
+        assert!(ev.frames() <= 300, "{} frames", ev.frames());
+        let set = ev.contours();
+        set.contour_ids()
+            .map(|id| set.signed_area(id))
+            .collect::<Vec<f64>>()
+    };
+    // Axes 16 px apart: a 2 px channel between the rims, which by intensity alone
+    // reads as cell (halfway between cell 0.1 and background 0.5 is 0.3).
+    let touching = rods(16.0);
+    let channel = touching.at(80, 80);
+    assert!(channel < 0.3, "the channel is {channel}");
+    let apart = areas(&rods(40.0));
+    assert_eq!(apart.len(), 2, "apart: {apart:?}");
+    let together = areas(&touching);
+    assert_eq!(together.len(), 2, "touching: {together:?}");
+    for a in together {
+        assert!(
+            (a - apart[0]).abs() < 0.15 * apart[0],
+            "a touching cell of {a} px², alone {}",
+            apart[0]
+        );
+    }
+}
+
+/// A bright ring on dark background, wrapped from the border: the adaptive engine
+/// opens the ring's hole (nucleation) and ends on one region with one hole of the
+/// right size; the topology-keeping engine keeps the wrap without a hole.
+#[test]
+fn wrap_opens_the_hole_of_a_ring() {
+    let (w, h) = (128usize, 128usize);
+    let (r_out, r_in) = (40.0, 16.0);
+    let img = image(w, h, |x, y| {
+        let d = (x - 64.0).hypot(y - 64.0);
+        let s = |e: f64| 1.0 / (1.0 + (e / 0.7).exp());
+        (0.1 + 0.7 * s(d - r_out) * (1.0 - s(d - r_in))) as f32
+    });
+    let wrap = [Shape::Rect {
+        min: Point::new(4.0, 4.0),
+        max: Point::new(w as f64 - 4.0, h as f64 - 4.0),
+    }];
+    let run = |mode| {
+        let params = Params {
+            polarity: Polarity::Bright,
+            mode,
+            ..Params::default()
+        };
+        let mut ev = Evolver::new(&img, &wrap, params).unwrap();
+        ev.run();
+        let set = ev.contours().clone();
+        let holes = set.contour_ids().filter(|&id| set.is_hole(id)).count();
+        (set.contour_count() - holes, holes, set.region_area(), ev.frames())
+    };
+    let (outer, holes, area, frames) = run(topocontour::evolution::Mode::Adaptive);
+    let ring = std::f64::consts::PI * (r_out * r_out - r_in * r_in);
+    assert_eq!((outer, holes), (1, 1), "adaptive");
+    assert!(frames <= 300, "{frames} frames");
+    assert!((area - ring).abs() < 0.05 * ring, "area {area}, ring {ring}");
+    let (outer, holes, _, _) = run(topocontour::evolution::Mode::Preserve);
+    assert_eq!((outer, holes), (1, 0), "preserve keeps the wrap's topology");
 }
