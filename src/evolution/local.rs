@@ -196,15 +196,16 @@ pub const HALO_REACH: f64 = 0.2;
 /// grey levels, the background 136, the cells 0–10, so a wrap kept the four cells as one
 /// (Dice 0.84). The white top-hat I − open(I) of the lightly blurred image (open = the
 /// max filter of the min filter over a square of half-side h = [`HALO_REACH`] · r, r the
-/// object scale) is large only on bright structures narrower than 2h + 1 between dark
-/// ones — the channels and the pockets between cell tips — and zero on the halo around
+/// objects' mean half-width, [`half_width`]) is large only on bright structures narrower
+/// than 2h + 1 between dark ones — the channels and the pockets between cell tips — and zero on the halo around
 /// a lone cell (its bright side is wide). Adding [`HALO_LIFT`] times it, clipped at
 /// `b`, moves those ridges to the background side: the wrap then ends on four cells
 /// (Dice 0.90; h from 0.15 to 0.5 r and a lift from 1.5 to 3 measured 0.84–0.90: a
 /// wider square or a stronger lift also eats into the cells' flanks along the channel).
 pub fn lift_narrow_halo(image: &Field, polarity: Polarity, b: f64) -> Field {
     let model = IntensityModel::learn(image, polarity, None, None);
-    let h = (HALO_REACH * object_scale(image, &model)).round().max(1.0) as usize;
+    // The scale unclamped: the channels widen with the pixel size like the cells.
+    let h = (HALO_REACH * half_width(image, &model)).round().max(1.0) as usize;
     let bright = polarity == Polarity::Bright;
     let smooth = image.blur(&[0.25, 0.5, 0.25]);
     // Dark cells: open the bright side (min, then max); bright cells the mirror.
@@ -458,6 +459,11 @@ pub fn decision_field(image: &Field, r: usize, model: &IntensityModel, floor: f6
 /// counts pixels, P pixel sides between object and background), clamped to
 /// [`RADIUS_RANGE`].
 pub fn object_scale(image: &Field, model: &IntensityModel) -> f64 {
+    half_width(image, model).clamp(RADIUS_RANGE.0, RADIUS_RANGE.1)
+}
+
+/// [`object_scale`] before the clamp (at least one pixel).
+pub fn half_width(image: &Field, model: &IntensityModel) -> f64 {
     let (w, h) = (image.width, image.height);
     let t = model.threshold() as f32;
     let bright = model.object >= model.background;
@@ -476,8 +482,7 @@ pub fn object_scale(image: &Field, model: &IntensityModel) -> f64 {
         }
     }
     // Pixel sides overestimate a smooth boundary's length by about 4/π.
-    let half_width = 2.0 * area as f64 / (perimeter.max(1) as f64 * std::f64::consts::FRAC_PI_4);
-    half_width.clamp(RADIUS_RANGE.0, RADIUS_RANGE.1)
+    (2.0 * area as f64 / (perimeter.max(1) as f64 * std::f64::consts::FRAC_PI_4)).max(1.0)
 }
 
 #[cfg(test)]
