@@ -37,6 +37,7 @@ proptest! {
     fn decision_level_matches_brute_force(
         w in 1usize..24, h in 1usize..24, r in 1usize..5, seed in any::<u64>(),
         object in 0.0f64..1.0, background in 0.0f64..1.0, floor in 0.0f64..0.2,
+        reach in 1.0f64..3.0,
     ) {
         let mut s = seed | 1;
         let f = image(w, h, |_, _| {
@@ -44,7 +45,7 @@ proptest! {
             (s % 1000) as f32 / 1000.0
         });
         let model = IntensityModel { object, background };
-        let d = decision_field(&f, r, &model, floor);
+        let d = decision_field(&f, r, &model, floor, reach);
         let bright = object >= background;
         let sign = if bright { 1.0 } else { -1.0 };
         let mean = box_mean(&f, r);
@@ -69,7 +70,8 @@ proptest! {
                 let b = if bright { b.max(background) } else { b.min(background) };
                 let level = b + sign * (0.5 * sign * (e as f64 - b)).max(floor);
                 let tg = 0.5 * (object + background);
-                let level = if bright { level.min(tg) } else { level.max(tg) };
+                let cap = b + reach * (tg - b);
+                let level = if bright { level.min(cap) } else { level.max(cap) };
                 prop_assert!((d.level.at(x, y) as f64 - level).abs() < 1e-5,
                     "{x},{y}: {} vs {level}", d.level.at(x, y));
                 let half = (level - b).abs().max(floor);

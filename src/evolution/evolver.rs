@@ -450,7 +450,7 @@ fn decision_levels(
         .enumerate()
         .map(|(l, lv)| {
             let r = (radius / Pyramid::scale(l)).round().max(1.0) as usize;
-            local::decision_field(&lv.image, r, model, floor)
+            local::decision_field(&lv.image, r, model, floor, local::reach(params.modality))
         })
         .collect()
 }

@@ -7,7 +7,8 @@
 //! that adapts to the neighbourhood: halfway between the local background b(x) and the
 //! most object-like value e(x) near x, bounded on both sides,
 //!
-//!   T(x) = b(x) + s · max(floor, s · (e(x) − b(x)) / 2),  then  s·T(x) ≤ s·T_g,
+//!   T(x) = b(x) + s · max(floor, s · (e(x) − b(x)) / 2),
+//!   then  s·(T(x) − b(x)) ≤ k · s·(T_g − b(x)),
 //!
 //! with s = +1 for bright objects and −1 for dark ones and T_g the global model's level
 //! (halfway between its means). The pieces:
@@ -26,8 +27,9 @@
 //! - floor: [`FLOOR_SIGMAS`] deviations of the pixel noise (flat background never reads
 //!   as object), and a share of the global contrast that depends on the modality (see
 //!   [`floor`]).
-//! - The cap at T_g keeps very bright objects whole where their neighbourhood is brighter
-//!   still.
+//! - The cap, k global half contrasts from the local background (k = 1: T_g itself when
+//!   b is the global background), keeps very bright objects whole where their
+//!   neighbourhood is brighter still; k depends on the modality (see [`reach`]).
 //!
 //! The region score is (I − T) / |T − b| (clamped to ±1), so a dim object's edge pulls
 //! as hard as a bright one's and a wrap over background far from any object shrinks at
@@ -145,6 +147,21 @@ pub fn floor(fine: &Field, model: &IntensityModel, modality: Modality) -> f64 {
     (FLOOR_SIGMAS * noise_sigma(fine))
         .max(MIN_CONTRAST)
         .max(share * contrast)
+}
+
+/// How far from the local background b the level may lie, in global half contrasts
+/// (the cap of the module doc): in fluorescence two — the global object mean above b —
+/// so a bright nucleus is cut at half its own contrast rather than at the global level,
+/// which took its out-of-focus glow (on the public case bright nuclei came out at twice
+/// their annotated area; the wrap's Dice went from 0.901 to 0.916, instance SEG 0.694
+/// to 0.717; 1.3, 1.6 and no cap measured 0.913, 0.916, 0.910); one, the global level
+/// itself, for every other kind (a looser cap lets the textured insides of phase-contrast
+/// cells and of our synthetic cases read as background: mean Dice 0.994 → 0.970).
+pub fn reach(modality: Modality) -> f64 {
+    match modality {
+        Modality::Fluorescence => 2.0,
+        _ => 1.0,
+    }
 }
 
 /// The image with the phase-contrast halo clipped to the background level `b` (values
@@ -425,8 +442,15 @@ pub struct Decision {
 }
 
 /// The decision level T(x) of the module doc for one pyramid level's image, `r` in that
-/// level's pixels.
-pub fn decision_field(image: &Field, r: usize, model: &IntensityModel, floor: f64) -> Decision {
+/// level's pixels, at least `floor` from the local background and at most `reach` global
+/// half contrasts from it ([`reach`]).
+pub fn decision_field(
+    image: &Field,
+    r: usize,
+    model: &IntensityModel,
+    floor: f64,
+    reach: f64,
+) -> Decision {
     let bright = model.object >= model.background;
     let s = if bright { 1.0 } else { -1.0 };
     let mut t = box_extreme(&image.blur(&[0.25, 0.5, 0.25]), r.div_ceil(2), bright);
@@ -443,8 +467,10 @@ pub fn decision_field(image: &Field, r: usize, model: &IntensityModel, floor: f6
             (*h as f64).min(model.background)
         };
         let level = b + s * (0.5 * s * (*v as f64 - b)).max(floor);
-        // Never beyond the global level: the inside of a large object stays object.
-        let level = if bright { level.min(tg) } else { level.max(tg) };
+        // Never further from the background than `reach` global half contrasts: the
+        // inside of a large object stays object.
+        let cap = b + reach * (tg - b);
+        let level = if bright { level.min(cap) } else { level.max(cap) };
         *v = level as f32;
         *h = (level - b).abs().max(floor) as f32;
     }
