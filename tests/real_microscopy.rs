@@ -4,7 +4,7 @@
 //! touching cells, and a wrap that opens the hole of a ring.
 
 use proptest::prelude::*;
-use topocontour::evolution::local::{box_extreme, box_mean, decision_field};
+use topocontour::evolution::local::{box_extreme, box_mean, decision_field, LevelRule};
 use topocontour::evolution::{
     find_seeds, Evolver, Field, IntensityModel, Modality, Params, Polarity, Shape,
 };
@@ -37,7 +37,7 @@ proptest! {
     fn decision_level_matches_brute_force(
         w in 1usize..24, h in 1usize..24, r in 1usize..5, seed in any::<u64>(),
         object in 0.0f64..1.0, background in 0.0f64..1.0, floor in 0.0f64..0.2,
-        reach in 1.0f64..3.0,
+        reach in 1.0f64..3.0, share in 0.3f64..0.6,
     ) {
         let mut s = seed | 1;
         let f = image(w, h, |_, _| {
@@ -45,7 +45,7 @@ proptest! {
             (s % 1000) as f32 / 1000.0
         });
         let model = IntensityModel { object, background };
-        let d = decision_field(&f, r, &model, floor, reach);
+        let d = decision_field(&f, r, &model, &LevelRule { floor, reach, share });
         let bright = object >= background;
         let sign = if bright { 1.0 } else { -1.0 };
         let mean = box_mean(&f, r);
@@ -68,7 +68,7 @@ proptest! {
                 let b = means.iter().copied().fold(if bright { f32::MAX } else { f32::MIN },
                     |a, v| if bright { a.min(v) } else { a.max(v) }) as f64;
                 let b = if bright { b.max(background) } else { b.min(background) };
-                let level = b + sign * (0.5 * sign * (e as f64 - b)).max(floor);
+                let level = b + sign * (share * sign * (e as f64 - b)).max(floor);
                 let tg = 0.5 * (object + background);
                 let cap = b + reach * (tg - b);
                 let level = if bright { level.min(cap) } else { level.max(cap) };

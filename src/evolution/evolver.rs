@@ -443,14 +443,14 @@ fn decision_levels(
     let radius = params
         .local_radius
         .unwrap_or_else(|| local::object_scale(fine, model));
-    let floor = local::floor(fine, model, params.modality);
+    let rule = local::LevelRule::new(fine, model, params.modality);
     pyramid
         .levels
         .iter()
         .enumerate()
         .map(|(l, lv)| {
             let r = (radius / Pyramid::scale(l)).round().max(1.0) as usize;
-            local::decision_field(&lv.image, r, model, floor, local::reach(params.modality))
+            local::decision_field(&lv.image, r, model, &rule)
         })
         .collect()
 }

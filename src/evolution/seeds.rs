@@ -57,8 +57,8 @@ pub fn find_seeds(image: &Field, polarity: Polarity, modality: Modality) -> Vec<
     let fine = Pyramid::new(&image, usize::MAX, 1).levels.remove(0).image;
     let model = IntensityModel::learn(&fine, polarity, None, None);
     let r = local::object_scale(&fine, &model).round() as usize;
-    let floor = local::floor(&fine, &model, modality);
-    let level = local::decision_field(&fine, r, &model, floor, local::reach(modality));
+    let rule = local::LevelRule::new(&fine, &model, modality);
+    let level = local::decision_field(&fine, r, &model, &rule);
     let bright = model.object >= model.background;
     let sign = if bright { 1.0 } else { -1.0 };
     // Phase contrast: only the cells' cores, well past the level, so the blurred gaps
