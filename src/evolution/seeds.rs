@@ -8,7 +8,7 @@
 //! smoothed) Euclidean distance transform that persist: pixels are added in decreasing
 //! distance, a union-find joins them into components, and when two components meet at
 //! level v the one with the lower peak p ends there; its peak is a seed if p − v ≥
-//! [`PERSISTENCE`] pixels (the 0-dimensional persistence of the maximum), else it was a
+//! [`PERSISTENCE`] object radii (the 0-dimensional persistence of the maximum), else it was a
 //! bump on a ridge. Every component's highest peak is a seed. This is the marker step of
 //! a distance-transform watershed, the classical way to split touching nuclei; we chose
 //! it over multi-scale Laplacian-of-Gaussian blobs because it needs no list of scales
@@ -35,9 +35,11 @@ use super::init::Shape;
 use super::local::{self, Modality};
 use crate::geometry::Point;
 
-/// Smallest height (pixels of distance) of a maximum above the neck that joins it to a
-/// higher one, for both to be seeds.
-pub const PERSISTENCE: f32 = 1.0;
+/// Smallest height of a maximum above the neck that joins it to a higher one, for both
+/// to be seeds, in object radii (the necks between touching nuclei deepen with their
+/// size). On the public fluorescence case (r = 11 px) 1/16 r = 0.7 px: instance SEG
+/// 0.755 at 1 px → 0.769; 1/12 and 1/20 of r measured 0.760 and 0.768.
+pub const PERSISTENCE: f32 = 1.0 / 16.0;
 
 /// Smallest distance to the background at a seed (pixels): thinner specks are noise.
 pub const MIN_PEAK: f32 = 1.5;
@@ -84,7 +86,7 @@ pub fn find_seeds(image: &Field, polarity: Polarity, modality: Modality) -> Vec<
         .map(|(&d, &m)| if m { d } else { 0.0 })
         .collect();
     let (w, h) = (fine.width, fine.height);
-    let peaks: Vec<usize> = persistent_maxima(&height, w, h, PERSISTENCE)
+    let peaks: Vec<usize> = persistent_maxima(&height, w, h, PERSISTENCE * r as f32)
         .into_iter()
         .filter(|&i| dist.data[i] >= MIN_PEAK)
         .collect();
