@@ -801,3 +801,33 @@ fn tiff_stacks_and_pixel_size() {
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.contains("no page 4"), "{err}");
 }
+
+/// A wrap over a bright ring: the adaptive engine opens the ring's hole (a `hole_made`
+/// event, one hole in the JSON); `--no-new-holes` keeps it filled.
+#[test]
+fn wrap_opens_a_ring_hole_unless_told_not_to() {
+    let img = image::GrayImage::from_fn(128, 128, |x, y| {
+        let d = (x as f64 + 0.5 - 64.0).hypot(y as f64 + 0.5 - 64.0);
+        image::Luma([if (16.0..40.0).contains(&d) { 200 } else { 30 }])
+    });
+    let input = tmp("ring.png");
+    img.save(&input).unwrap();
+    let holes = |extra: &[&str]| {
+        let json = tmp(&format!("ring{}.json", extra.len()));
+        let out = bin()
+            .arg("segment")
+            .arg(&input)
+            .args(["--wrap", "4", "--object", "bright", "--json"])
+            .arg(&json)
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let doc: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        let contours = doc["contours"].as_array().unwrap();
+        contours.iter().filter(|c| c["hole"] == true).count()
+    };
+    assert_eq!(holes(&[]), 1);
+    assert_eq!(holes(&["--no-new-holes"]), 0);
+}

@@ -38,6 +38,10 @@ pub struct RunSettings {
     /// object scale).
     #[arg(long, value_name = "PX")]
     pub local_radius: Option<f64>,
+    /// Adaptive mode: do not open holes where a region covers clear background (holes
+    /// then come only from fronts that meet).
+    #[arg(long)]
+    pub no_new_holes: bool,
     /// Stop after this many frames.
     #[arg(long, value_name = "N")]
     pub max_frames: Option<usize>,
@@ -71,6 +75,7 @@ impl RunSettings {
             mode: Mode::Adaptive,
             modality: Modality::Generic,
             local_radius: None,
+            no_new_holes: false,
             max_frames: None,
             min_area: None,
             broad_phase: BroadPhaseKind::Bins,
@@ -174,6 +179,7 @@ pub fn params_for(a: &RunSettings) -> Result<Params, Failure> {
         polarity: a.object,
         modality: a.modality,
         broad_phase: a.broad_phase,
+        open_holes: !a.no_new_holes,
         ..Params::default()
     };
     if let Some(r) = a.local_radius {
