@@ -378,6 +378,8 @@ impl Evolver {
         self.params = params;
         self.engine.set_forces(weights, step);
         self.schedule.resume();
+        // New forces may leave new background inside: holes may open again.
+        self.reopened = 0;
         self.edits.push(Edit::Forces {
             frame: self.frame,
             weights,
