@@ -7,7 +7,8 @@
 //! phase-contrast cells would have to push a finger down each narrow channel between
 //! them against the contour's own smoothing. A level set (Chan–Vese) opens such holes
 //! wherever the region term says background; this is the explicit counterpart. When a
-//! pyramid level is done, the region is filled on that level's pixel grid; pixels well
+//! pyramid level is done (and once more when the finest level has settled: the
+//! evolver's schedule), the region is filled on that level's pixel grid; pixels well
 //! inside it (their eight neighbours inside too) whose region score is at most
 //! −[`NUCLEATE_SCORE`] form connected pieces, and each piece of at least
 //! [`NUCLEATE_PIXELS`] pixels gets a small hole ring at its most background-like pixel.
