@@ -111,6 +111,26 @@ impl Field {
     }
 }
 
+/// The 8-connected neighbours of pixel `i` on a `w` × `h` grid (those inside it).
+pub fn neighbours8(i: usize, w: usize, h: usize) -> impl Iterator<Item = usize> {
+    const D: [(isize, isize); 8] = [
+        (-1, -1),
+        (0, -1),
+        (1, -1),
+        (-1, 0),
+        (1, 0),
+        (-1, 1),
+        (0, 1),
+        (1, 1),
+    ];
+    let (x, y) = ((i % w) as isize, (i / w) as isize);
+    D.into_iter().filter_map(move |(dx, dy)| {
+        let (nx, ny) = (x + dx, y + dy);
+        (nx >= 0 && ny >= 0 && nx < w as isize && ny < h as isize)
+            .then(|| ny as usize * w + nx as usize)
+    })
+}
+
 /// The pyramid's kernel, 1/16 [1 4 6 4 1].
 const BINOMIAL5: [f32; 5] = [1.0 / 16.0, 4.0 / 16.0, 6.0 / 16.0, 4.0 / 16.0, 1.0 / 16.0];
 

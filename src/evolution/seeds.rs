@@ -29,7 +29,7 @@
 //! local contrast past the level ([`CORE_PHASE`]): touching cells are separated there
 //! by grey gaps that read as object at the level itself.
 
-use super::field::{Field, Pyramid};
+use super::field::{neighbours8, Field, Pyramid};
 use super::forces::{IntensityModel, Polarity};
 use super::init::Shape;
 use super::local::{self, Modality};
@@ -352,22 +352,8 @@ pub fn persistent_maxima(height: &[f32], w: usize, h: usize, min_persistence: f3
     for &p in &order {
         parent[p as usize] = p;
         peak[p as usize] = p;
-        let (x, y) = ((p as usize % w) as i64, (p as usize / w) as i64);
-        for (dx, dy) in [
-            (-1, -1),
-            (0, -1),
-            (1, -1),
-            (-1, 0),
-            (1, 0),
-            (-1, 1),
-            (0, 1),
-            (1, 1),
-        ] {
-            let (nx, ny) = (x + dx, y + dy);
-            if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
-                continue;
-            }
-            let q = (ny as usize * w + nx as usize) as u32;
+        for q in neighbours8(p as usize, w, h) {
+            let q = q as u32;
             if parent[q as usize] == NONE {
                 continue;
             }

@@ -21,7 +21,7 @@
 //! from the background, so −0.5 is three deviations, over four pixels at once); only the
 //! adaptive engine nucleates (a new hole is a change of topology).
 
-use super::super::field::Level;
+use super::super::field::{neighbours8, Level};
 use super::super::forces::IntensityModel;
 use super::super::local::Decision;
 use crate::contours::ContourSet;
@@ -111,13 +111,7 @@ pub fn nucleate(
             if s < best_score {
                 (best, best_score) = (i, s);
             }
-            let (x, y) = ((i % w) as isize, (i / w) as isize);
-            for (dx, dy) in NEIGHBOURS {
-                let (nx, ny) = (x + dx, y + dy);
-                if nx < 0 || ny < 0 || nx >= w as isize || ny >= h as isize {
-                    continue;
-                }
-                let j = ny as usize * w + nx as usize;
+            for j in neighbours8(i, w, h) {
                 if candidate[j] {
                     candidate[j] = false;
                     stack.push(j);
@@ -134,17 +128,6 @@ pub fn nucleate(
     }
     events
 }
-
-const NEIGHBOURS: [(isize, isize); 8] = [
-    (-1, -1),
-    (0, -1),
-    (1, -1),
-    (-1, 0),
-    (1, 0),
-    (-1, 1),
-    (0, 1),
-    (1, 1),
-];
 
 /// A square hole ring of half-diagonal `r` around `centre` (clockwise: a hole), unless
 /// it would touch a ring; the event names the ring that encloses it.
