@@ -17,6 +17,14 @@ fn image(w: usize, h: usize, mut f: impl FnMut(f64, f64) -> f32) -> Field {
     Field::new(w, h, data)
 }
 
+/// A wrap: the rectangle 4 px inside a `w` × `h` image.
+fn wrap(w: usize, h: usize) -> [Shape; 1] {
+    [Shape::Rect {
+        min: Point::new(4.0, 4.0),
+        max: Point::new(w as f64 - 4.0, h as f64 - 4.0),
+    }]
+}
+
 /// The (2r+1)² box around (x, y), cut to the image.
 fn window(f: &Field, x: usize, y: usize, r: usize) -> Vec<f32> {
     let mut v = Vec::new();
@@ -158,10 +166,7 @@ fn phase_contrast_wrap_ends_on_the_cell() {
         let halo = 0.45 * (-(d - 3.0).powi(2) / 8.0).exp();
         (0.5 - 0.4 * cell + halo * (1.0 - cell)) as f32
     });
-    let wrap = [Shape::Rect {
-        min: Point::new(4.0, 4.0),
-        max: Point::new(w as f64 - 4.0, h as f64 - 4.0),
-    }];
+    let wrap = wrap(w, h);
     let cell_area = 60.0 * 14.0 + std::f64::consts::PI * 49.0;
     let run = |modality| {
         let params = Params {
@@ -207,10 +212,7 @@ fn phase_contrast_wrap_separates_touching_cells() {
         }
         img
     };
-    let wrap = [Shape::Rect {
-        min: Point::new(4.0, 4.0),
-        max: Point::new(w as f64 - 4.0, h as f64 - 4.0),
-    }];
+    let wrap = wrap(w, h);
     let areas = |img: &Field| {
         let params = Params {
             polarity: Polarity::Dark,
@@ -255,10 +257,7 @@ fn wrap_opens_the_hole_of_a_ring() {
         let s = |e: f64| 1.0 / (1.0 + (e / 0.7).exp());
         (0.1 + 0.7 * s(d - r_out) * (1.0 - s(d - r_in))) as f32
     });
-    let wrap = [Shape::Rect {
-        min: Point::new(4.0, 4.0),
-        max: Point::new(w as f64 - 4.0, h as f64 - 4.0),
-    }];
+    let wrap = wrap(w, h);
     let run = |mode| {
         let params = Params {
             polarity: Polarity::Bright,
