@@ -916,3 +916,41 @@ fn a_large_image_is_prepared_in_the_background() {
     assert_eq!(h.state().shown, 3, "the steps asked meanwhile were done");
     let _ = std::fs::remove_file(path);
 }
+
+/// A wrap over a bright ring finds the ring's hole; unticking "open holes" (one click
+/// on the check box) keeps the wrap's region filled, and undo brings the setting back.
+#[test]
+fn the_open_holes_check_box_decides_whether_a_wrap_finds_a_ring_hole() {
+    let img = image::GrayImage::from_fn(128, 128, |x, y| {
+        let d = (x as f64 + 0.5 - 64.0).hypot(y as f64 + 0.5 - 64.0);
+        image::Luma([if (16.0..40.0).contains(&d) { 200 } else { 30 }])
+    });
+    let path = temp("app-ring.png");
+    img.save(&path).unwrap();
+    let run_holes = |h: &mut Harness<'_, TopoApp>| {
+        for _ in 0..40 {
+            h.get_by_label("Step 10").click();
+            h.step();
+        }
+        let set = evolver(h.state()).contours();
+        set.contour_ids().filter(|&id| set.is_hole(id)).count()
+    };
+    let mut app = TopoApp::default();
+    app.send(Command::OpenImage(path));
+    app.send(Command::SetPolarity(
+        topocontour::evolution::Polarity::Bright,
+    ));
+    app.send(Command::WrapBorder(4.0));
+    app.apply();
+    let mut h = harness(app);
+    h.step();
+    assert!(h.state().settings.open_holes);
+    assert_eq!(run_holes(&mut h), 1, "the ring's hole opens");
+    h.get_by_label("open holes").click();
+    h.step();
+    assert!(!h.state().settings.open_holes);
+    assert_eq!(run_holes(&mut h), 0, "no hole without nucleation");
+    h.state_mut().send(Command::Undo);
+    h.step();
+    assert!(h.state().settings.open_holes);
+}

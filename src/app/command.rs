@@ -97,6 +97,8 @@ pub enum Command {
     FindSeeds,
     /// The kind of image (phase contrast treats the halo as background).
     SetModality(Modality),
+    /// Whether the adaptive engine opens holes in clear background inside a region.
+    SetOpenHoles(bool),
     /// Play the evolution.
     Play,
     /// Pause playback.
@@ -249,6 +251,7 @@ impl TopoApp {
             | Command::SeekFrame(..) => self.playback(c),
             Command::SetTool(..)
             | Command::SetModality(..)
+            | Command::SetOpenHoles(..)
             | Command::SetPolarity(..)
             | Command::SetMode(..)
             | Command::SetCompare(..)
@@ -452,6 +455,10 @@ impl TopoApp {
             Command::SetTool(t) => self.settings.tool = t,
             Command::SetModality(m) => {
                 self.settings.modality = m;
+                self.reset_run();
+            }
+            Command::SetOpenHoles(on) => {
+                self.settings.open_holes = on;
                 self.reset_run();
             }
             Command::SetPolarity(p) => {

@@ -114,6 +114,7 @@ impl TopoApp {
         self.settings.polarity = p.polarity;
         self.settings.mode = p.mode;
         self.settings.modality = p.modality;
+        self.settings.open_holes = p.open_holes;
         self.settings.broad_phase = p.broad_phase;
         self.settings.weights = p.weights;
         self.settings.step = p.step;

@@ -55,6 +55,7 @@ impl History {
                 | Command::FindSeeds
                 | Command::SetPolarity(_)
                 | Command::SetModality(_)
+                | Command::SetOpenHoles(_)
                 | Command::SetMode(_)
                 | Command::SetBroadPhase(_)
                 | Command::SetCompare(_)

@@ -209,6 +209,7 @@ impl TopoApp {
         Params {
             polarity: self.settings.polarity,
             modality: self.settings.modality,
+            open_holes: self.settings.open_holes,
             mode: self.settings.mode,
             broad_phase: self.settings.broad_phase,
             weights: self.settings.weights,

@@ -15,6 +15,8 @@ pub struct Settings {
     pub modality: Modality,
     /// The engine.
     pub mode: Mode,
+    /// The adaptive engine opens holes in clear background inside a region.
+    pub open_holes: bool,
     /// The broad phase of the crossing search.
     pub broad_phase: BroadPhaseKind,
     /// The engine shown side by side with `mode`, if any.
@@ -46,6 +48,7 @@ impl Default for Settings {
             polarity: Polarity::Dark,
             modality: Modality::Generic,
             mode: Mode::Adaptive,
+            open_holes: p.open_holes,
             broad_phase: p.broad_phase,
             compare: None,
             weights: p.weights,
