@@ -268,13 +268,21 @@ fn wrap_opens_the_hole_of_a_ring() {
         ev.run();
         let set = ev.contours().clone();
         let holes = set.contour_ids().filter(|&id| set.is_hole(id)).count();
-        (set.contour_count() - holes, holes, set.region_area(), ev.frames())
+        (
+            set.contour_count() - holes,
+            holes,
+            set.region_area(),
+            ev.frames(),
+        )
     };
     let (outer, holes, area, frames) = run(topocontour::evolution::Mode::Adaptive);
     let ring = std::f64::consts::PI * (r_out * r_out - r_in * r_in);
     assert_eq!((outer, holes), (1, 1), "adaptive");
     assert!(frames <= 300, "{frames} frames");
-    assert!((area - ring).abs() < 0.05 * ring, "area {area}, ring {ring}");
+    assert!(
+        (area - ring).abs() < 0.05 * ring,
+        "area {area}, ring {ring}"
+    );
     let (outer, holes, _, _) = run(topocontour::evolution::Mode::Preserve);
     assert_eq!((outer, holes), (1, 0), "preserve keeps the wrap's topology");
 }

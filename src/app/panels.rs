@@ -199,7 +199,10 @@ fn engine_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
     let mut open = app.settings.open_holes;
     let tip = "adaptive engine: open a hole where a region covers clear background, as a level set would (a wrap finds a ring's hole and parts touching cells); off: holes come only from fronts that meet";
     if ui
-        .add_enabled(app.settings.mode == Mode::Adaptive, egui::Checkbox::new(&mut open, "open holes"))
+        .add_enabled(
+            app.settings.mode == Mode::Adaptive,
+            egui::Checkbox::new(&mut open, "open holes"),
+        )
         .on_hover_text(tip)
         .clicked()
     {

@@ -257,9 +257,7 @@ impl Evolver {
                 self.open_holes(level + 1);
                 let events = self.engine.refine(level);
                 self.log_events(&events);
-            } else if self.schedule.converged
-                && self.reopened < REOPEN_ROUNDS
-                && self.open_holes(0)
+            } else if self.schedule.converged && self.reopened < REOPEN_ROUNDS && self.open_holes(0)
             {
                 // The holes grow on: the finest level runs again.
                 self.reopened += 1;

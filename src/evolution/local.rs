@@ -268,7 +268,9 @@ pub fn box_mean(f: &Field, r: usize) -> Field {
             acc.iter_mut().zip(row(y + r)).for_each(|(a, &v)| *a += v);
         }
         if y > r {
-            acc.iter_mut().zip(row(y - r - 1)).for_each(|(a, &v)| *a -= v);
+            acc.iter_mut()
+                .zip(row(y - r - 1))
+                .for_each(|(a, &v)| *a -= v);
         }
         let rows = ((y + r + 1).min(h) - y.saturating_sub(r)) as f32;
         // Prefix sums along the row, in f64: their differences keep f32 precision.
@@ -484,7 +486,12 @@ pub fn share(modality: Modality) -> f64 {
 
 /// The decision level T(x) of the module doc for one pyramid level's image, `r` in that
 /// level's pixels, placed by `rule`.
-pub fn decision_field(image: &Field, r: usize, model: &IntensityModel, rule: &LevelRule) -> Decision {
+pub fn decision_field(
+    image: &Field,
+    r: usize,
+    model: &IntensityModel,
+    rule: &LevelRule,
+) -> Decision {
     let LevelRule {
         floor,
         reach,
@@ -509,7 +516,11 @@ pub fn decision_field(image: &Field, r: usize, model: &IntensityModel, rule: &Le
         // Never further from the background than `reach` global half contrasts: the
         // inside of a large object stays object.
         let cap = b + reach * (tg - b);
-        let level = if bright { level.min(cap) } else { level.max(cap) };
+        let level = if bright {
+            level.min(cap)
+        } else {
+            level.max(cap)
+        };
         *v = level as f32;
         *h = (level - b).abs().max(floor) as f32;
     }

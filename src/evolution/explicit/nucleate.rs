@@ -150,5 +150,9 @@ fn open_hole(set: &mut ContourSet, centre: Point, r: f64) -> Option<TopologyEven
 fn enclosing_ring(set: &ContourSet, p: Point) -> Option<crate::contours::ContourId> {
     set.contour_ids()
         .filter(|&id| winding_number(&set.ring_points(id), p) != 0)
-        .min_by(|&a, &b| set.signed_area(a).abs().total_cmp(&set.signed_area(b).abs()))
+        .min_by(|&a, &b| {
+            set.signed_area(a)
+                .abs()
+                .total_cmp(&set.signed_area(b).abs())
+        })
 }

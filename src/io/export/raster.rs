@@ -118,7 +118,6 @@ impl Outputs<'_> {
     }
 }
 
-
 /// A one-pixel line from `a` to `b` (pixel coordinates), sampled every half pixel.
 fn draw_segment(rgb: &mut [u8], w: usize, h: usize, a: Point, b: Point, c: [u8; 3]) {
     let n = (a.dist(b) * 2.0).ceil().max(1.0) as usize;
