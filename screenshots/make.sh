@@ -9,8 +9,11 @@ if ! command -v xvfb-run >/dev/null || ! command -v xdotool >/dev/null || ! comm
 fi
 cargo build --release
 out=screenshots
-home=$(mktemp -d)   # fresh settings: the shots show the defaults
-export HOME="$home" XDG_DATA_HOME="$home/data" XDG_CONFIG_HOME="$home/config"
-xvfb-run -a -s "-screen 0 1280x820x24" bash screenshots/session.sh "$out"
-xvfb-run -a -s "-screen 0 1280x820x24" bash screenshots/workbench.sh "$out"
-rm -rf "$home"
+# Fresh settings for each script: the shots show the defaults, and one script's
+# choices do not carry into the next.
+for script in session workbench; do
+  home=$(mktemp -d)
+  HOME="$home" XDG_DATA_HOME="$home/data" XDG_CONFIG_HOME="$home/config" \
+    xvfb-run -a -s "-screen 0 1280x820x24" bash "screenshots/$script.sh" "$out"
+  rm -rf "$home"
+done

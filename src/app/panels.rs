@@ -196,18 +196,6 @@ fn engine_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
     if let Some(m) = choice_row(ui, app.settings.mode, &modes, tip) {
         app.send(Command::SetMode(m));
     }
-    let mut open = app.settings.open_holes;
-    let tip = "adaptive engine: open a hole where a region covers clear background, as a level set would (a wrap finds a ring's hole and parts touching cells); off: holes come only from fronts that meet";
-    if ui
-        .add_enabled(
-            app.settings.mode == Mode::Adaptive,
-            egui::Checkbox::new(&mut open, "open holes"),
-        )
-        .on_hover_text(tip)
-        .clicked()
-    {
-        app.send(Command::SetOpenHoles(open));
-    }
     let compare = app.settings.compare;
     let name = |m: Option<Mode>| m.map_or("none", |m| m.name());
     let beside = [
@@ -220,6 +208,18 @@ fn engine_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
     let tip = "run a second engine side by side on the same image and shapes";
     if let Some(m) = choice_combo(ui, "compare", text, compare, &beside, name, tip) {
         app.send(Command::SetCompare(m));
+    }
+    let mut open = app.settings.open_holes;
+    let tip = "adaptive engine: open a hole where a region covers clear background, as a level set would (a wrap finds a ring's hole and parts touching cells); off: holes come only from fronts that meet";
+    if ui
+        .add_enabled(
+            app.settings.mode == Mode::Adaptive,
+            egui::Checkbox::new(&mut open, "open holes"),
+        )
+        .on_hover_text(tip)
+        .clicked()
+    {
+        app.send(Command::SetOpenHoles(open));
     }
 }
 
