@@ -216,11 +216,13 @@ pub const HALO_REACH: f64 = 0.2;
 /// (Dice 0.84). The white top-hat I − open(I) of the lightly blurred image (open = the
 /// max filter of the min filter over a square of half-side h = [`HALO_REACH`] · r, r the
 /// objects' mean half-width, [`half_width`]) is large only on bright structures narrower
-/// than 2h + 1 between dark ones — the channels and the pockets between cell tips — and zero on the halo around
-/// a lone cell (its bright side is wide). Adding [`HALO_LIFT`] times it, clipped at
-/// `b`, moves those ridges to the background side: the wrap then ends on four cells
-/// (Dice 0.90; h from 0.15 to 0.5 r and a lift from 1.5 to 3 measured 0.84–0.90: a
-/// wider square or a stronger lift also eats into the cells' flanks along the channel).
+/// than 2h + 1 between dark ones — the channels and the pockets between cell tips — and
+/// zero on the halo around a lone cell (its bright side is wide). Adding [`HALO_LIFT`]
+/// times it, clipped at `b`, moves those ridges to the background side, and the
+/// adaptive engine opens holes there (`explicit::nucleate`): the wrap parts the cells
+/// (Dice 0.84 → 0.90; with the level at the midpoint, h from 0.15 to 0.5 r and a lift
+/// from 1.5 to 3 measured 0.84–0.90: a wider square or a stronger lift also eats into
+/// the cells' flanks along the channel).
 pub fn lift_narrow_halo(image: &Field, polarity: Polarity, b: f64) -> Field {
     let model = IntensityModel::learn(image, polarity, None, None);
     // The scale unclamped: the channels widen with the pixel size like the cells.
