@@ -25,7 +25,7 @@ use super::super::field::{neighbours8, Level};
 use super::super::forces::IntensityModel;
 use super::super::local::Decision;
 use crate::contours::ContourSet;
-use crate::geometry::{fill_even_odd, winding_number, Point};
+use crate::geometry::{fill_even_odd, Point};
 use crate::topology::TopologyEvent;
 
 /// Region score a pixel must reach (or go below, towards background) to open a hole.
@@ -55,16 +55,6 @@ pub fn nucleate(
                 .collect()
         })
         .collect();
-    // score ≤ −s  ⇔  sign·(v − level) ≤ −s·half: no division per pixel.
-    let background = |i: usize| -> bool {
-        let v = image.data[i];
-        match decision {
-            Some(d) => {
-                d.sign as f32 * (v - d.level.data[i]) <= -(NUCLEATE_SCORE as f32) * d.half.data[i]
-            }
-            None => model.score(v as f64) <= -NUCLEATE_SCORE,
-        }
-    };
     let score = |i: usize| -> f64 {
         let v = image.data[i] as f64;
         match decision {
@@ -77,7 +67,7 @@ pub fn nucleate(
     let mut listed = Vec::new();
     fill_even_odd(&rings, w, h, |i| {
         inside[i] = true;
-        if background(i) {
+        if score(i) <= -NUCLEATE_SCORE {
             listed.push(i);
         }
     });
@@ -132,7 +122,6 @@ pub fn nucleate(
 /// A square hole ring of half-diagonal `r` around `centre` (clockwise: a hole), unless
 /// it would touch a ring; the event names the ring that encloses it.
 fn open_hole(set: &mut ContourSet, centre: Point, r: f64) -> Option<TopologyEvent> {
-    let enclosing = enclosing_ring(set, centre)?;
     let ring = [
         centre + Point::new(0.0, r),
         centre + Point::new(r, 0.0),
@@ -140,19 +129,17 @@ fn open_hole(set: &mut ContourSet, centre: Point, r: f64) -> Option<TopologyEven
         centre + Point::new(-r, 0.0),
     ];
     let hole = set.add_ring(&ring).ok()?;
-    Some(TopologyEvent::HoleMade {
-        from: enclosing,
-        hole,
-    })
-}
-
-/// The innermost ring around `p` (the smallest that winds round it).
-fn enclosing_ring(set: &ContourSet, p: Point) -> Option<crate::contours::ContourId> {
-    set.contour_ids()
-        .filter(|&id| winding_number(&set.ring_points(id), p) != 0)
-        .min_by(|&a, &b| {
-            set.signed_area(a)
-                .abs()
-                .total_cmp(&set.signed_area(b).abs())
-        })
+    let enclosing = set
+        .parents()
+        .into_iter()
+        .find_map(|(id, parent)| (id == hole).then_some(parent))
+        .flatten();
+    match enclosing {
+        Some(from) => Some(TopologyEvent::HoleMade { from, hole }),
+        None => {
+            // Outside every region after all: no hole there.
+            set.remove_ring(hole);
+            None
+        }
+    }
 }
