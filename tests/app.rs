@@ -20,6 +20,15 @@ fn case_image(name: &str) -> std::path::PathBuf {
         .join("image.png")
 }
 
+/// The app on the bundled sample after `frames` frames of its wrap, drawn once.
+fn sample_after(frames: usize) -> Harness<'static, TopoApp> {
+    let mut app = TopoApp::with_sample();
+    app.send(Command::Step(frames));
+    let mut h = harness(app);
+    h.step();
+    h
+}
+
 /// Clicks the canvas at `pos` (press and release on successive frames).
 fn click_at(h: &mut Harness<'_, TopoApp>, pos: egui::Pos2) {
     h.hover_at(pos);
@@ -105,7 +114,7 @@ fn a_split_appears_in_the_event_log_and_clicking_it_shows_that_frame() {
     for _ in 0..30 {
         h.get_by_label("Step 10").click();
         h.step();
-        if h.state().log.iter().any(|(_, e)| e.kind() == "split") {
+        if logged(&h, |e| e.kind() == "split") {
             break;
         }
     }
@@ -422,10 +431,7 @@ fn undo_and_redo_shape_edits() {
 /// A parameter change clears the run on screen; Undo brings it back at its frame.
 #[test]
 fn undo_brings_back_a_run_a_parameter_change_cleared() {
-    let mut app = TopoApp::with_sample();
-    app.send(Command::Step(30));
-    let mut h = harness(app);
-    h.step();
+    let mut h = sample_after(30);
     let frame = h.state().shown;
     assert!(frame > 0 && h.state().run.is_some());
     h.state_mut().send(Command::SetPolarity(
@@ -447,10 +453,7 @@ fn undo_brings_back_a_run_a_parameter_change_cleared() {
 /// F1 opens the shortcut list, Esc closes it; ← goes one frame back.
 #[test]
 fn help_and_frame_keys() {
-    let mut app = TopoApp::with_sample();
-    app.send(Command::Step(5));
-    let mut h = harness(app);
-    h.step();
+    let mut h = sample_after(5);
     assert!(!h.state().show_help);
     h.key_press(egui::Key::F1);
     h.step();
@@ -523,6 +526,11 @@ fn contour_count(h: &Harness<'_, TopoApp>) -> usize {
     evolver(h.state()).contours().contour_count()
 }
 
+/// Whether the event log holds an event that `is` accepts.
+fn logged(h: &Harness<'_, TopoApp>, is: impl Fn(&topocontour::TopologyEvent) -> bool) -> bool {
+    h.state().log.iter().any(|(_, e)| is(e))
+}
+
 /// The vertex of the run's contours nearest to `p`.
 fn vertex_near(app: &TopoApp, p: topocontour::Point) -> u32 {
     let set = evolver(app).contours();
@@ -582,11 +590,7 @@ fn hand_edits_merge_and_split_exactly() {
     });
     h.step();
     assert_eq!(contour_count(&h), 2, "split");
-    assert!(h
-        .state()
-        .log
-        .iter()
-        .any(|(_, e)| matches!(e, TopologyEvent::Split { .. })));
+    assert!(logged(&h, |e| matches!(e, TopologyEvent::Split { .. })));
     evolver(h.state()).contours().sanity_check().unwrap();
 }
 
@@ -594,10 +598,7 @@ fn hand_edits_merge_and_split_exactly() {
 /// run is not thrown away, and Undo puts the old forces and frames back.
 #[test]
 fn a_force_change_continues_from_the_frame_on_screen() {
-    let mut app = TopoApp::with_sample();
-    app.send(Command::Step(20));
-    let mut h = harness(app);
-    h.step();
+    let mut h = sample_after(20);
     let at = h.state().shown;
     assert_eq!(at, 20);
     let before = h.state().run.as_ref().unwrap().history[at].rings.len();
@@ -692,10 +693,7 @@ fn a_session_replays_hand_edits_and_force_changes() {
 /// clears the selection.
 #[test]
 fn the_object_table_is_linked_to_the_canvas() {
-    let mut app = TopoApp::with_sample();
-    app.send(Command::Step(60));
-    let mut h = harness(app);
-    h.step();
+    let mut h = sample_after(60);
     h.step();
     let set = evolver(h.state()).contours().clone();
     let regions = topocontour::evolution::regions(&set);
@@ -834,11 +832,7 @@ fn a_brush_stroke_merges_and_undoes_as_one_step() {
         h.step();
     }
     assert_eq!(contour_count(&h), 1, "merged");
-    assert!(h
-        .state()
-        .log
-        .iter()
-        .any(|(_, e)| matches!(e, TopologyEvent::Merge { .. })));
+    assert!(logged(&h, |e| matches!(e, TopologyEvent::Merge { .. })));
     h.state_mut().send(Command::Undo);
     h.step();
     assert_eq!(contour_count(&h), 2, "one undo takes the whole stroke back");
@@ -921,10 +915,7 @@ fn a_large_image_is_prepared_in_the_background() {
 /// on the check box) keeps the wrap's region filled, and undo brings the setting back.
 #[test]
 fn the_open_holes_check_box_decides_whether_a_wrap_finds_a_ring_hole() {
-    let img = image::GrayImage::from_fn(128, 128, |x, y| {
-        let d = (x as f64 + 0.5 - 64.0).hypot(y as f64 + 0.5 - 64.0);
-        image::Luma([if (16.0..40.0).contains(&d) { 200 } else { 30 }])
-    });
+    let img = topocontour::check::ring_image(128, 16.0, 40.0);
     let path = temp("app-ring.png");
     img.save(&path).unwrap();
     let run_holes = |h: &mut Harness<'_, TopoApp>| {

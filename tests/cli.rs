@@ -17,6 +17,11 @@ fn tmp(name: &str) -> PathBuf {
     d.join(name)
 }
 
+/// A JSON file, parsed.
+fn read_json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
 fn gray_png(path: &Path) -> (u32, u32, Vec<u8>) {
     let img = image::open(path).unwrap().to_luma8();
     (img.width(), img.height(), img.into_raw())
@@ -38,8 +43,7 @@ fn run_case(name: &str, extra: &[&str]) -> (serde_json::Value, PathBuf) {
     static RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let run = RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let dir = cases_dir().join(name);
-    let meta: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("case.json")).unwrap()).unwrap();
+    let meta = read_json(&dir.join("case.json"));
     let init = &meta["init"];
     let mut args: Vec<String> = vec![
         "segment".into(),
@@ -74,10 +78,7 @@ fn run_case(name: &str, extra: &[&str]) -> (serde_json::Value, PathBuf) {
         "{name}: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    (
-        serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap(),
-        mask,
-    )
+    (read_json(&json), mask)
 }
 
 #[test]
@@ -95,10 +96,7 @@ fn public_cases_get_topology_and_dice() {
     ];
     for name in names {
         let (doc, mask) = run_case(name, &[]);
-        let meta: serde_json::Value = serde_json::from_str(
-            &std::fs::read_to_string(cases_dir().join(name).join("case.json")).unwrap(),
-        )
-        .unwrap();
+        let meta = read_json(&cases_dir().join(name).join("case.json"));
         let contours = doc["contours"].as_array().unwrap();
         let holes = contours.iter().filter(|c| c["hole"] == true).count();
         let outer = contours.len() - holes;
@@ -220,8 +218,7 @@ fn svg_renders_like_the_mask_and_geojson_parses() {
     }
     let iou = inter as f64 / union as f64;
     assert!(iou >= 0.99, "svg vs mask IoU {iou}");
-    let geo: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&geo_path).unwrap()).unwrap();
+    let geo = read_json(&geo_path);
     let features = geo["features"].as_array().unwrap();
     assert_eq!(features.len(), 1);
     let rings = features[0]["geometry"]["coordinates"].as_array().unwrap();
@@ -489,8 +486,7 @@ fn labels_and_qupath_geojson() {
         for (p, &mv) in l.pixels().zip(&m) {
             assert_eq!(p.0[0] > 0, mv > 127);
         }
-        let g: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(&geo).unwrap()).unwrap();
+        let g = read_json(&geo);
         let props = &g["features"][0]["properties"];
         assert_eq!(props["objectType"], "annotation");
         assert_eq!(props["classification"]["name"], "Object");
@@ -545,10 +541,7 @@ fn batch_writes_one_json_per_image_and_a_summary() {
     let rows: Vec<&str> = lines.collect();
     let mut total = 0;
     for name in ["blobs_wrap", "bridge_merge", "phase_cells"] {
-        let doc: serde_json::Value = serde_json::from_str(
-            &std::fs::read_to_string(out.join(format!("{name}.json"))).unwrap(),
-        )
-        .unwrap();
+        let doc = read_json(&out.join(format!("{name}.json")));
         let outer = doc["contours"]
             .as_array()
             .unwrap()
@@ -806,10 +799,7 @@ fn tiff_stacks_and_pixel_size() {
 /// event, one hole in the JSON); `--no-new-holes` keeps it filled.
 #[test]
 fn wrap_opens_a_ring_hole_unless_told_not_to() {
-    let img = image::GrayImage::from_fn(128, 128, |x, y| {
-        let d = (x as f64 + 0.5 - 64.0).hypot(y as f64 + 0.5 - 64.0);
-        image::Luma([if (16.0..40.0).contains(&d) { 200 } else { 30 }])
-    });
+    let img = topocontour::check::ring_image(128, 16.0, 40.0);
     let input = tmp("ring.png");
     img.save(&input).unwrap();
     let holes = |extra: &[&str]| {
@@ -827,8 +817,7 @@ fn wrap_opens_a_ring_hole_unless_told_not_to() {
             "{}",
             String::from_utf8_lossy(&out.stderr)
         );
-        let doc: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        let doc = read_json(&json);
         let contours = doc["contours"].as_array().unwrap();
         contours.iter().filter(|c| c["hole"] == true).count()
     };

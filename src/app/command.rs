@@ -453,28 +453,23 @@ impl TopoApp {
     fn set_parameter(&mut self, c: Command) {
         match c {
             Command::SetTool(t) => self.settings.tool = t,
-            Command::SetModality(m) => {
-                self.settings.modality = m;
-                self.reset_run();
-            }
-            Command::SetOpenHoles(on) => {
-                self.settings.open_holes = on;
-                self.reset_run();
-            }
-            Command::SetPolarity(p) => {
-                self.settings.polarity = p;
-                self.reset_run();
-            }
-            Command::SetMode(mode) => {
-                self.settings.mode = mode;
-                self.reset_run();
-            }
-            Command::SetCompare(mode) => {
-                self.settings.compare = mode;
-                self.reset_run();
-            }
-            Command::SetBroadPhase(kind) => {
-                self.settings.broad_phase = kind;
+            Command::SetModality(_)
+            | Command::SetOpenHoles(_)
+            | Command::SetPolarity(_)
+            | Command::SetMode(_)
+            | Command::SetCompare(_)
+            | Command::SetBroadPhase(_) => {
+                let s = &mut self.settings;
+                match c {
+                    Command::SetModality(m) => s.modality = m,
+                    Command::SetOpenHoles(on) => s.open_holes = on,
+                    Command::SetPolarity(p) => s.polarity = p,
+                    Command::SetMode(mode) => s.mode = mode,
+                    Command::SetCompare(mode) => s.compare = mode,
+                    Command::SetBroadPhase(kind) => s.broad_phase = kind,
+                    _ => unreachable!(),
+                }
+                // A parameter the run was started with: it starts again.
                 self.reset_run();
             }
             Command::SetForces { weights, step } => self.set_forces(weights, step),

@@ -1,4 +1,5 @@
-//! The benchmark and profiling set-up: a grid of rings and the moves that jitter them.
+//! The benchmark and profiling set-up (a grid of rings and the moves that jitter them),
+//! and test images shared by the test suites.
 
 use super::Rng;
 use crate::contours::{BroadPhaseKind, ContourSet};
@@ -82,4 +83,14 @@ impl JitterMoves {
         self.out = !self.out;
         (self.verts[k], to)
     }
+}
+
+/// A bright ring (grey 200 between radii `inner` and `outer`) on dark background (grey
+/// 30), centred in a `side` × `side` image: a wrap over it must open the ring's hole.
+pub fn ring_image(side: u32, inner: f64, outer: f64) -> image::GrayImage {
+    let c = side as f64 / 2.0;
+    image::GrayImage::from_fn(side, side, |x, y| {
+        let d = (x as f64 + 0.5 - c).hypot(y as f64 + 0.5 - c);
+        image::Luma([if (inner..outer).contains(&d) { 200 } else { 30 }])
+    })
 }
