@@ -531,6 +531,19 @@ fn logged(h: &Harness<'_, TopoApp>, is: impl Fn(&topocontour::TopologyEvent) -> 
     h.state().log.iter().any(|(_, e)| is(e))
 }
 
+/// Drags the contour vertex nearest to `from` to the right in `steps` hand moves of
+/// 4 px, one frame drawn after each.
+fn drag_right(h: &mut Harness<'_, TopoApp>, from: topocontour::Point, steps: usize) {
+    let v = vertex_near(h.state(), from);
+    for k in 1..=steps {
+        h.state_mut().send(Command::HandMove {
+            vertex: v,
+            to: topocontour::Point::new(from.x + 4.0 * k as f64, from.y),
+        });
+        h.step();
+    }
+}
+
 /// The vertex of the run's contours nearest to `p`.
 fn vertex_near(app: &TopoApp, p: topocontour::Point) -> u32 {
     let set = evolver(app).contours();
@@ -552,14 +565,7 @@ fn hand_edits_merge_and_split_exactly() {
     h.step();
     assert_eq!(contour_count(&h), 2);
     // Merge: drag the right-most vertex of the left disk into the right one, in steps.
-    let v = vertex_near(h.state(), Point::new(50.0, 64.0));
-    for k in 1..=5 {
-        h.state_mut().send(Command::HandMove {
-            vertex: v,
-            to: Point::new(50.0 + 4.0 * k as f64, 64.0),
-        });
-        h.step();
-    }
+    drag_right(&mut h, Point::new(50.0, 64.0), 5);
     assert_eq!(contour_count(&h), 1, "merged");
     assert!(h
         .state()
@@ -640,14 +646,7 @@ fn a_session_replays_hand_edits_and_force_changes() {
     app.send(Command::Step(3));
     let mut h = harness(app);
     h.step();
-    let v = vertex_near(h.state(), Point::new(52.0, 64.0));
-    for k in 1..=4 {
-        h.state_mut().send(Command::HandMove {
-            vertex: v,
-            to: Point::new(52.0 + 4.0 * k as f64, 64.0),
-        });
-        h.step();
-    }
+    drag_right(&mut h, Point::new(52.0, 64.0), 4);
     let mut weights = h.state().settings.weights;
     weights.bend = 0.2;
     h.state_mut().send(Command::SetForces {
