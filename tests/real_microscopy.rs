@@ -1,5 +1,6 @@
 //! The real-image machinery on constructed images: the local decision level against a
-//! brute-force reference, automatic seeds on touching disks of different brightness, a
+//! brute-force reference, automatic seeds on touching disks of different brightness and
+//! on nuclei side by side with no neck between them, a
 //! phase-contrast wrap that ends on the cell, not on the halo, and one that separates
 //! touching cells, and a wrap that opens the hole of a ring.
 
@@ -8,7 +9,7 @@ use topocontour::evolution::local::{box_extreme, box_mean, decision_field, Level
 use topocontour::evolution::{
     find_seeds, Evolver, Field, IntensityModel, Modality, Params, Polarity, Shape,
 };
-use topocontour::geometry::Point;
+use topocontour::geometry::{winding_number, Point};
 
 fn image(w: usize, h: usize, mut f: impl FnMut(f64, f64) -> f32) -> Field {
     let data = (0..w * h)
@@ -146,6 +147,68 @@ fn auto_seeds_find_each_of_touching_disks() {
         (total - expected).abs() < 0.2 * expected,
         "area {total}, about {expected}"
     );
+}
+
+/// Pairs of nuclei side by side along their short axes, equal in brightness: the union's
+/// distance transform peaks once, at the contact, so only the notches of the outline
+/// tell two nuclei (see `evolution::declump`). Each pair gets two seeds, one in each
+/// nucleus, and grows into two objects of about half the pair; lone nuclei, even one
+/// as wide as a pair, get one seed each.
+#[test]
+fn auto_seeds_part_nuclei_side_by_side_without_a_neck() {
+    let (a, b, gap) = (13.0, 7.5, 12.0);
+    let pairs = [(40.0, 40.0), (110.0, 40.0), (40.0, 110.0)];
+    // Lone nuclei, one of them as wide as a pair.
+    let lone = [
+        (110.0, 110.0, b + 0.5 * gap),
+        (165.0, 40.0, b),
+        (165.0, 110.0, b),
+    ];
+    let inside = |x: f64, y: f64, cx: f64, cy: f64, bx: f64| {
+        ((x - cx) / bx).powi(2) + ((y - cy) / a).powi(2) <= 1.0
+    };
+    let img = image(190, 150, |x, y| {
+        let nucleus = pairs.iter().any(|&(cx, cy)| {
+            inside(x, y, cx - 0.5 * gap, cy, b) || inside(x, y, cx + 0.5 * gap, cy, b)
+        }) || lone.iter().any(|&(cx, cy, bx)| inside(x, y, cx, cy, bx));
+        let v = if nucleus { 0.6 } else { 0.08 };
+        v + 0.02 * (((x * 7.0 + y * 13.0) as i64 % 5) as f32 / 5.0)
+    });
+    let seeds = find_seeds(&img, Polarity::Bright, Modality::Fluorescence);
+    assert_eq!(seeds.len(), 2 * pairs.len() + lone.len(), "{seeds:?}");
+    for &(cx, cy) in &pairs {
+        for side in [-0.5 * gap, 0.5 * gap] {
+            let centre = Point::new(cx + side, cy);
+            let near = seeds.iter().filter(|s| s.center().dist(centre) < b).count();
+            assert_eq!(near, 1, "nucleus at {centre:?}: {seeds:?}");
+        }
+    }
+    let params = Params {
+        polarity: Polarity::Bright,
+        mode: topocontour::evolution::Mode::Preserve,
+        modality: Modality::Fluorescence,
+        ..Params::default()
+    };
+    let mut ev = Evolver::new(&img, &seeds, params).unwrap();
+    ev.run();
+    let set = ev.contours();
+    assert_eq!(set.contour_count(), 2 * pairs.len() + lone.len());
+    // Each pair's nuclei share the lens between them: half of it each, less the gap.
+    let half_pair = std::f64::consts::PI * a * b - 30.0;
+    for &(cx, cy) in &pairs {
+        for side in [-0.5 * gap, 0.5 * gap] {
+            let centre = Point::new(cx + side, cy);
+            let id = set
+                .contour_ids()
+                .find(|&id| winding_number(&set.ring_points(id), centre) != 0)
+                .expect("a contour over each nucleus");
+            let area = set.signed_area(id);
+            assert!(
+                (area - half_pair).abs() < 0.2 * half_pair,
+                "{centre:?}: {area}"
+            );
+        }
+    }
 }
 
 /// A dark cell with a bright halo on grey background: the phase-contrast wrap stops on

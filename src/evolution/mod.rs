@@ -2,6 +2,7 @@
 //! initialisations, the engines behind one trait, the schedule, the frame-by-frame
 //! `Evolver` and measurements.
 
+pub mod declump;
 pub mod engine;
 pub mod evolver;
 pub mod explicit;
