@@ -23,9 +23,8 @@
 //!   background (a local *mean* would put half of a large object's interior below its
 //!   own level).
 //! - b(x) is the emptiest (2r+1)² box mean within 3r of x, never less object-like than
-//!   the global background, nor (except in fluorescence) than a quadratic surface fitted
-//!   to the background ([`Backdrop`]): uneven light raises it, a halo beside an object
-//!   does not lower it. The box mean keeps the noise from biasing the minimum.
+//!   the global background: uneven light raises it, a halo beside an object does not
+//!   lower it. The box mean keeps the noise from biasing the minimum.
 //! - floor: [`FLOOR_SIGMAS`] deviations of the pixel noise (flat background never reads
 //!   as object), and a share of the global contrast that depends on the modality (see
 //!   [`floor`]).
@@ -455,149 +454,6 @@ pub struct Decision {
     pub sign: f64,
 }
 
-/// The background's light as a smooth surface over the image: a quadratic in the
-/// image's fractional coordinates, so one fit serves every pyramid level. Uneven light
-/// (a lamp off centre, vignetting) makes the background of one side as bright as the
-/// objects' rims on the other: the emptiest box within reach then lies in the darker
-/// part and the bright background reads as object. The local background is never taken
-/// below this surface. On the coins photograph (scikit-image's `coins`, a wrap, generic
-/// kind) the bright top and left edges had read as one object along the border; with
-/// the surface the wrap ends on the coins (and three specks of 88–408 px²), in 290
-/// frames. The public phase-contrast, generic and synthetic cases give the same scores
-/// (the synthetic blobs_wrap settles one frame sooner).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Backdrop {
-    /// Coefficients of 1, u, v, u², uv, v².
-    pub coef: [f64; 6],
-    /// The range of the background values fitted, widened by half: the surface is
-    /// clamped to it, so where it extrapolates (no background there, under a large
-    /// object) it stays near what was seen.
-    pub range: (f64, f64),
-}
-
-impl Backdrop {
-    fn terms(u: f64, v: f64) -> [f64; 6] {
-        [1.0, u, v, u * u, u * v, v * v]
-    }
-
-    /// The surface at fractional position (u, v) ∈ [0, 1]².
-    pub fn at(&self, u: f64, v: f64) -> f64 {
-        Self::terms(u, v)
-            .iter()
-            .zip(&self.coef)
-            .map(|(t, c)| t * c)
-            .sum::<f64>()
-            .clamp(self.range.0, self.range.1)
-    }
-
-    /// Fitted by least squares to the pixels of `fine` on the background side of the
-    /// global level, then twice more to those within [`BACKDROP_SIGMAS`] deviations of
-    /// the background about the fit on the object side (so dim objects below the global
-    /// level drop out). `None` with too little background to fit.
-    pub fn fit(fine: &Field, model: &IntensityModel) -> Option<Backdrop> {
-        let (w, h) = (fine.width, fine.height);
-        let n = w * h;
-        let step = n.div_ceil(NOISE_SAMPLES).max(1);
-        let s = if model.object >= model.background {
-            1.0
-        } else {
-            -1.0
-        };
-        let tg = model.threshold();
-        let samples: Vec<(f64, f64, f64)> = (0..n)
-            .step_by(step)
-            .map(|i| {
-                let (x, y) = (i % w, i / w);
-                (
-                    (x as f64 + 0.5) / w as f64,
-                    (y as f64 + 0.5) / h as f64,
-                    fine.data[i] as f64,
-                )
-            })
-            .filter(|&(_, _, v)| s * (v - tg) < 0.0)
-            .collect();
-        let mut fit: Option<Backdrop> = None;
-        let mut sigma = f64::INFINITY;
-        for _ in 0..3 {
-            if let Some(f) = fit {
-                // The spread of the background about the fit (texture and noise alike),
-                // read robustly: the median absolute residual.
-                let mut res: Vec<f64> = samples
-                    .iter()
-                    .map(|&(u, v, val)| (val - f.at(u, v)).abs())
-                    .collect();
-                let mid = res.len() / 2;
-                sigma = 1.4826 * *res.select_nth_unstable_by(mid, f64::total_cmp).1;
-            }
-            let mut ata = [[0.0f64; 6]; 6];
-            let mut atb = [0.0f64; 6];
-            let mut count = 0;
-            let mut range = (f64::INFINITY, f64::NEG_INFINITY);
-            for &(u, v, val) in &samples {
-                if let Some(f) = fit {
-                    if s * (val - f.at(u, v)) > BACKDROP_SIGMAS * sigma {
-                        continue;
-                    }
-                }
-                range = (range.0.min(val), range.1.max(val));
-                let t = Self::terms(u, v);
-                for a in 0..6 {
-                    atb[a] += t[a] * val;
-                    for b in 0..6 {
-                        ata[a][b] += t[a] * t[b];
-                    }
-                }
-                count += 1;
-            }
-            // Too little background to say how the light varies: no surface.
-            if count < BACKDROP_MIN.max(n.div_ceil(step) / 20) {
-                return fit;
-            }
-            // Half the range's width of slack: the light's extremes (a bright corner)
-            // lie beyond the pixels fitted, which the global level cut (on the coins
-            // photograph a quarter brought back a band of the bright top edge).
-            let slack = 0.5 * (range.1 - range.0);
-            let range = (range.0 - slack, range.1 + slack);
-            fit = solve6(ata, atb).map(|coef| Backdrop { coef, range });
-            fit?;
-        }
-        fit
-    }
-}
-
-/// Solves the 6×6 system by Gaussian elimination with partial pivoting; `None` when it
-/// is singular.
-fn solve6(mut a: [[f64; 6]; 6], mut b: [f64; 6]) -> Option<[f64; 6]> {
-    for col in 0..6 {
-        let piv = (col..6).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
-        if a[piv][col].abs() < 1e-12 {
-            return None;
-        }
-        a.swap(col, piv);
-        b.swap(col, piv);
-        for row in col + 1..6 {
-            let (pivot, f) = (a[col], a[row][col] / a[col][col]);
-            for (v, p) in a[row].iter_mut().zip(pivot).skip(col) {
-                *v -= f * p;
-            }
-            b[row] -= f * b[col];
-        }
-    }
-    let mut x = [0.0; 6];
-    for row in (0..6).rev() {
-        let tail: f64 = (row + 1..6).map(|k| a[row][k] * x[k]).sum();
-        x[row] = (b[row] - tail) / a[row][row];
-    }
-    Some(x)
-}
-
-/// Fewest background samples for a [`Backdrop`] (and at least a twentieth of all).
-pub const BACKDROP_MIN: usize = 60;
-
-/// How far above the backdrop fit (in robust deviations of the background about it) a
-/// pixel may lie and still count as background in the next fit.
-pub const BACKDROP_SIGMAS: f64 = 2.5;
-
 /// How the decision level sits between the local background and the local object.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LevelRule {
@@ -608,8 +464,6 @@ pub struct LevelRule {
     /// Where between background and object the level lies, as a share of the local
     /// contrast ([`share`]).
     pub share: f64,
-    /// The background's light, below which the local background is never taken.
-    pub backdrop: Option<Backdrop>,
 }
 
 impl LevelRule {
@@ -619,13 +473,6 @@ impl LevelRule {
             floor: floor(fine, model, modality),
             reach: reach(modality),
             share: share(modality),
-            backdrop: match modality {
-                // Dark background with the glow of dense nuclei in it: a fitted surface
-                // follows the glow (mahotas_nuclear: a wrap then needs 308 frames, not
-                // 238); fluorescence keeps the flat global background.
-                Modality::Fluorescence => None,
-                _ => Backdrop::fit(fine, model),
-            },
         }
     }
 }
@@ -658,7 +505,6 @@ pub fn decision_field(
         floor,
         reach,
         share,
-        backdrop,
     } = *rule;
     let bright = model.object >= model.background;
     let s = if bright { 1.0 } else { -1.0 };
@@ -666,27 +512,14 @@ pub fn decision_field(
     // The emptiest r-box within reach: a mean first, so that noise does not bias it.
     let mut half = box_extreme(&box_mean(image, r), BACKGROUND_REACH * r, !bright);
     let tg = model.threshold();
-    let (w, hgt) = (image.width as f64, image.height as f64);
-    for (i, (v, h)) in t.data.iter_mut().zip(half.data.iter_mut()).enumerate() {
+    for (v, h) in t.data.iter_mut().zip(half.data.iter_mut()) {
         // Background may be raised by uneven light (more object-like than the global
         // background), never pushed the other way: a halo beside an object is not
         // background light.
-        let light = match backdrop {
-            Some(bd) => {
-                let (x, y) = ((i % image.width) as f64, (i / image.width) as f64);
-                let at = bd.at((x + 0.5) / w, (y + 0.5) / hgt);
-                if bright {
-                    at.max(model.background)
-                } else {
-                    at.min(model.background)
-                }
-            }
-            None => model.background,
-        };
         let b = if bright {
-            (*h as f64).max(light)
+            (*h as f64).max(model.background)
         } else {
-            (*h as f64).min(light)
+            (*h as f64).min(model.background)
         };
         let level = b + s * (share * s * (*v as f64 - b)).max(floor);
         // Never further from the background than `reach` global half contrasts: the
@@ -740,35 +573,6 @@ pub fn half_width(image: &Field, model: &IntensityModel) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn the_backdrop_follows_uneven_light_and_ignores_the_objects() {
-        // Light 0.2 + 0.3 u + 0.2 v², bright disks of 0.9 on it, a little texture.
-        let (w, h) = (120, 90);
-        let light = |u: f64, v: f64| 0.2 + 0.3 * u + 0.2 * v * v;
-        let data = (0..w * h)
-            .map(|i| {
-                let (x, y) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
-                let disk = (x % 40.0 - 20.0).hypot(y % 30.0 - 15.0) < 8.0;
-                let texture = 0.01 * ((i * 7919) % 3) as f64;
-                (if disk {
-                    0.9
-                } else {
-                    light(x / w as f64, y / h as f64)
-                } + texture) as f32
-            })
-            .collect();
-        let fine = Field::new(w, h, data);
-        let model = IntensityModel {
-            object: 0.9,
-            background: 0.4,
-        };
-        let fit = Backdrop::fit(&fine, &model).expect("a fit");
-        for (u, v) in [(0.1, 0.1), (0.5, 0.5), (0.9, 0.2), (0.3, 0.95)] {
-            let err = fit.at(u, v) - (light(u, v) + 0.01);
-            assert!(err.abs() < 0.01, "at {u},{v}: off by {err}");
-        }
-    }
 
     #[test]
     fn box_extreme_equals_the_brute_force_extreme() {
