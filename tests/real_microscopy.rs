@@ -26,6 +26,19 @@ fn wrap(w: usize, h: usize) -> [Shape; 1] {
     }]
 }
 
+/// `seeds` grown on a fluorescence image in preserve mode (the instance run).
+fn grown_instances(img: &Field, seeds: &[Shape]) -> Evolver {
+    let params = Params {
+        polarity: Polarity::Bright,
+        mode: topocontour::evolution::Mode::Preserve,
+        modality: Modality::Fluorescence,
+        ..Params::default()
+    };
+    let mut ev = Evolver::new(img, seeds, params).unwrap();
+    ev.run();
+    ev
+}
+
 /// The (2r+1)² box around (x, y), cut to the image.
 fn window(f: &Field, x: usize, y: usize, r: usize) -> Vec<f32> {
     let mut v = Vec::new();
@@ -121,14 +134,7 @@ fn auto_seeds_find_each_of_touching_disks() {
         assert_eq!(inside, 1, "disk at {cx},{cy}: {seeds:?}");
     }
     // Grown in preserve mode, the seeds stay six objects, each near its disk's area.
-    let params = Params {
-        polarity: Polarity::Bright,
-        mode: topocontour::evolution::Mode::Preserve,
-        modality: Modality::Fluorescence,
-        ..Params::default()
-    };
-    let mut ev = Evolver::new(&img, &seeds, params).unwrap();
-    ev.run();
+    let ev = grown_instances(&img, &seeds);
     let set = ev.contours();
     assert_eq!(set.contour_count(), 6);
     // A dim disk loses the strip next to its bright partner, whose brightness sets the
@@ -183,14 +189,7 @@ fn auto_seeds_part_nuclei_side_by_side_without_a_neck() {
             assert_eq!(near, 1, "nucleus at {centre:?}: {seeds:?}");
         }
     }
-    let params = Params {
-        polarity: Polarity::Bright,
-        mode: topocontour::evolution::Mode::Preserve,
-        modality: Modality::Fluorescence,
-        ..Params::default()
-    };
-    let mut ev = Evolver::new(&img, &seeds, params).unwrap();
-    ev.run();
+    let ev = grown_instances(&img, &seeds);
     let set = ev.contours();
     assert_eq!(set.contour_count(), 2 * pairs.len() + lone.len());
     // Each pair's nuclei share the lens between them: half of it each, less the gap.
