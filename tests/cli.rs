@@ -18,6 +18,18 @@ fn tmp(name: &str) -> PathBuf {
 }
 
 /// A JSON file, parsed.
+/// Runs `cmd` and asserts it succeeded, showing its stderr if not.
+fn run_ok(cmd: &mut Command) -> std::process::Output {
+    let out = cmd.output().unwrap();
+    assert!(
+        out.status.success(),
+        "{:?}: {}",
+        cmd.get_args().collect::<Vec<_>>(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
 fn read_json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
@@ -72,12 +84,7 @@ fn run_case(name: &str, extra: &[&str]) -> (serde_json::Value, PathBuf) {
         json.display().to_string(),
     ]);
     args.extend(extra.iter().map(|s| s.to_string()));
-    let out = bin().args(&args).output().unwrap();
-    assert!(
-        out.status.success(),
-        "{name}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    run_ok(bin().args(&args));
     (read_json(&json), mask)
 }
 
@@ -512,26 +519,18 @@ fn batch_writes_one_json_per_image_and_a_summary() {
         .unwrap();
     }
     std::fs::write(input.join("notes.txt"), "not an image").unwrap();
-    let run = bin()
-        .args([
-            "batch",
-            input.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            "--wrap",
-            "6",
-            "--object",
-            "dark",
-            "--formats",
-            "json,labels",
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    run_ok(bin().args([
+        "batch",
+        input.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--wrap",
+        "6",
+        "--object",
+        "dark",
+        "--formats",
+        "json,labels",
+    ]));
     let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
     let mut lines = summary.lines();
     assert_eq!(
@@ -656,21 +655,8 @@ fn replay_equals_segment() {
                 "--save-session",
                 s.to_str().unwrap(),
             ]);
-            let seg = bin().args(&args).output().unwrap();
-            assert!(
-                seg.status.success(),
-                "{}",
-                String::from_utf8_lossy(&seg.stderr)
-            );
-            let rep = bin()
-                .args(["replay", s.to_str().unwrap(), "--json", b.to_str().unwrap()])
-                .output()
-                .unwrap();
-            assert!(
-                rep.status.success(),
-                "{}",
-                String::from_utf8_lossy(&rep.stderr)
-            );
+            run_ok(bin().args(&args));
+            run_ok(bin().args(["replay", s.to_str().unwrap(), "--json", b.to_str().unwrap()]));
             assert_eq!(
                 std::fs::read(&a).unwrap(),
                 std::fs::read(&b).unwrap(),
@@ -739,12 +725,7 @@ fn tiff_stacks_and_pixel_size() {
         if let Some(p) = page {
             args.extend(["--page".into(), p.into()]);
         }
-        let out = bin().args(&args).output().unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        let out = run_ok(bin().args(&args));
         let text = std::fs::read_to_string(&csv).unwrap();
         let row: Vec<String> = text
             .lines()
@@ -804,18 +785,13 @@ fn wrap_opens_a_ring_hole_unless_told_not_to() {
     img.save(&input).unwrap();
     let holes = |extra: &[&str]| {
         let json = tmp(&format!("ring{}.json", extra.len()));
-        let out = bin()
-            .arg("segment")
-            .arg(&input)
-            .args(["--wrap", "4", "--object", "bright", "--json"])
-            .arg(&json)
-            .args(extra)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
+        run_ok(
+            bin()
+                .arg("segment")
+                .arg(&input)
+                .args(["--wrap", "4", "--object", "bright", "--json"])
+                .arg(&json)
+                .args(extra),
         );
         let doc = read_json(&json);
         let contours = doc["contours"].as_array().unwrap();

@@ -26,6 +26,13 @@ fn wrap(w: usize, h: usize) -> [Shape; 1] {
     }]
 }
 
+/// `init` evolved on `img` with `params` until it settles.
+fn settled(img: &Field, init: &[Shape], params: Params) -> Evolver {
+    let mut ev = Evolver::new(img, init, params).unwrap();
+    ev.run();
+    ev
+}
+
 /// `seeds` grown on a fluorescence image in preserve mode (the instance run).
 fn grown_instances(img: &Field, seeds: &[Shape]) -> Evolver {
     let params = Params {
@@ -34,9 +41,7 @@ fn grown_instances(img: &Field, seeds: &[Shape]) -> Evolver {
         modality: Modality::Fluorescence,
         ..Params::default()
     };
-    let mut ev = Evolver::new(img, seeds, params).unwrap();
-    ev.run();
-    ev
+    settled(img, seeds, params)
 }
 
 /// The (2r+1)² box around (x, y), cut to the image.
@@ -236,8 +241,7 @@ fn phase_contrast_wrap_ends_on_the_cell() {
             modality,
             ..Params::default()
         };
-        let mut ev = Evolver::new(&img, &wrap, params).unwrap();
-        ev.run();
+        let ev = settled(&img, &wrap, params);
         assert!(ev.frames() <= 300);
         (ev.contours().contour_count(), ev.contours().region_area())
     };
@@ -281,8 +285,7 @@ fn phase_contrast_wrap_separates_touching_cells() {
             modality: Modality::PhaseContrast,
             ..Params::default()
         };
-        let mut ev = Evolver::new(img, &wrap, params).unwrap();
-        ev.run();
+        let ev = settled(img, &wrap, params);
         assert!(ev.frames() <= 300, "{} frames", ev.frames());
         let set = ev.contours();
         set.contour_ids()
@@ -326,8 +329,7 @@ fn wrap_opens_the_hole_of_a_ring() {
             mode,
             ..Params::default()
         };
-        let mut ev = Evolver::new(&img, &wrap, params).unwrap();
-        ev.run();
+        let ev = settled(&img, &wrap, params);
         let set = ev.contours().clone();
         let holes = set.contour_ids().filter(|&id| set.is_hole(id)).count();
         (

@@ -22,6 +22,7 @@
 //! 0.2–0.3 the same on dsb2018. Without the fit test, cuts through the ragged nuclei of
 //! mahotas_nuclear are made at every salience tried.
 
+use super::field::neighbours4;
 use super::seeds::distance_transform;
 use crate::geometry::{fill_even_odd, Point};
 
@@ -191,18 +192,6 @@ impl Patch {
         }
         inside / (area + n - inside)
     }
-}
-
-fn neighbours4(i: usize, w: usize, h: usize) -> impl Iterator<Item = usize> {
-    let (x, y) = (i % w, i / w);
-    [
-        (x > 0).then(|| i - 1),
-        (x + 1 < w).then(|| i + 1),
-        (y > 0).then(|| i - w),
-        (y + 1 < h).then(|| i + w),
-    ]
-    .into_iter()
-    .flatten()
 }
 
 /// Andrew's monotone chain; collinear points dropped.

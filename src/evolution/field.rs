@@ -111,6 +111,19 @@ impl Field {
     }
 }
 
+/// The 4-connected neighbours of pixel `i` on a `w` × `h` grid (those inside it).
+pub fn neighbours4(i: usize, w: usize, h: usize) -> impl Iterator<Item = usize> {
+    let (x, y) = (i % w, i / w);
+    [
+        (x > 0).then(|| i - 1),
+        (x + 1 < w).then(|| i + 1),
+        (y > 0).then(|| i - w),
+        (y + 1 < h).then(|| i + w),
+    ]
+    .into_iter()
+    .flatten()
+}
+
 /// The 8-connected neighbours of pixel `i` on a `w` × `h` grid (those inside it).
 pub fn neighbours8(i: usize, w: usize, h: usize) -> impl Iterator<Item = usize> {
     const D: [(isize, isize); 8] = [

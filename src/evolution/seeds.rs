@@ -39,7 +39,7 @@
 //! object at the level itself.
 
 use super::declump;
-use super::field::{neighbours8, Field, Pyramid};
+use super::field::{neighbours4, neighbours8, Field, Pyramid};
 use super::forces::{IntensityModel, Polarity};
 use super::init::Shape;
 use super::local::{self, Modality};
@@ -140,14 +140,7 @@ fn basins(height: &[f32], peaks: &[usize], w: usize, h: usize) -> Vec<u32> {
     }
     // Heights are non-negative: their bits order like the values.
     while let Some((_, i)) = heap.pop() {
-        let (x, y) = (i % w, i / w);
-        let near = [
-            (x > 0).then(|| i - 1),
-            (x + 1 < w).then(|| i + 1),
-            (y > 0).then(|| i - w),
-            (y + 1 < h).then(|| i + w),
-        ];
-        for j in near.into_iter().flatten() {
+        for j in neighbours4(i, w, h) {
             if label[j] == 0 && height[j] > 0.0 {
                 label[j] = label[i];
                 heap.push((height[j].to_bits(), j));
