@@ -10,7 +10,9 @@
 //! Layers (each uses only those above it):
 //! - [`geometry`]: points, exact orientation, segment intersection;
 //! - [`contours`]: the ring arena [`ContourSet`] and its broad phase [`contours::VertexBins`];
-//! - [`topology`]: motion regions, Directives 1 and 2, topology events.
+//! - [`topology`]: motion regions, Directives 1 and 2, topology events;
+//! - [`learn`]: a pixel classifier (random forest on multiscale features) trained from
+//!   a user's strokes, whose probabilities the contours can follow.
 //!
 //! Cargo features: `gui` (default) builds the desktop app (`app`, eframe/egui), `cli`
 //! (default) the headless command line (`cli`, clap); without default features the
@@ -30,6 +32,7 @@ pub mod contours;
 pub mod evolution;
 pub mod geometry;
 pub mod io;
+pub mod learn;
 pub mod topology;
 
 pub use contours::{ContourId, ContourSet, RingError, VertexId};
