@@ -26,9 +26,10 @@ pub mod nucleate;
 pub use motion::{Adaptive, Motion, Preserve, PRESERVE_GAP};
 
 use super::engine::{Engine, Frame};
-use super::field::Pyramid;
-use super::forces::{normal_speed, ForceWeights, IntensityModel};
-use super::local::Decision;
+use crate::image::field::Pyramid;
+use super::forces::{normal_speed, ForceWeights};
+use crate::image::IntensityModel;
+use crate::image::local::Decision;
 use super::remesh::remesh;
 use crate::contours::ContourSet;
 use crate::geometry::{Aabb, Point};

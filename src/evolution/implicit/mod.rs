@@ -49,9 +49,9 @@ mod marching_squares;
 mod simple_point;
 
 use super::engine::{Engine, Frame};
-use super::field::Field;
-use super::forces::IntensityModel;
-use super::init::Shape;
+use crate::image::field::Field;
+use crate::image::IntensityModel;
+use crate::shape::Shape;
 use crate::contours::{BroadPhaseKind, ContourSet};
 use crate::geometry::{signed_area2, winding_number, Aabb, Point};
 use crate::topology::TopologyEvent;

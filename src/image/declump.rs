@@ -23,7 +23,7 @@
 //! mahotas_nuclear are made at every salience tried.
 
 use super::field::neighbours4;
-use super::seeds::distance_transform;
+use super::distance::distance_transform;
 use crate::geometry::{fill_even_odd, Point};
 
 /// Smallest part, in object disks (π r²).
