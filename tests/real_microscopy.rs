@@ -5,12 +5,12 @@
 //! touching cells, and a wrap that opens the hole of a ring.
 
 use proptest::prelude::*;
-use topocontour::image::filters::{box_extreme, box_mean};
-use topocontour::image::local::{decision_field, LevelRule};
 use topocontour::evolution::{
     find_seeds, Evolver, Field, IntensityModel, Modality, Params, Polarity, Shape,
 };
 use topocontour::geometry::{winding_number, Point};
+use topocontour::image::filters::{box_extreme, box_mean};
+use topocontour::image::local::{decision_field, LevelRule};
 
 fn image(w: usize, h: usize, mut f: impl FnMut(f64, f64) -> f32) -> Field {
     let data = (0..w * h)

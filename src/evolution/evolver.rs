@@ -15,19 +15,19 @@
 
 use super::engine::{Engine, Engines, Frame};
 use super::explicit::Explicit;
-use crate::image::field::{Field, Pyramid};
 use super::forces::ForceWeights;
-use crate::image::hints::hints;
-use crate::image::intensity::IntensityModel;
 use super::implicit::{Implicit, ImplicitEngine};
-use crate::shape::Shape;
-use crate::image::local;
-use crate::image::modality::{self, Modality};
-use crate::image::scale;
 use super::params::{check_params, check_shapes, EvolveError, Mode, Params};
 use super::schedule::Schedule;
 use crate::contours::{ContourId, ContourSet};
 use crate::geometry::{Aabb, Point};
+use crate::image::field::{Field, Pyramid};
+use crate::image::hints::hints;
+use crate::image::intensity::IntensityModel;
+use crate::image::local;
+use crate::image::modality::{self, Modality};
+use crate::image::scale;
+use crate::shape::Shape;
 use crate::topology::TopologyEvent;
 use std::sync::Arc;
 

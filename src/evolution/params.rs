@@ -2,9 +2,9 @@
 //! could not start ([`EvolveError`]), with the checks made before anything moves.
 
 use super::forces::ForceWeights;
+use crate::contours::BroadPhaseKind;
 use crate::image::{Modality, Polarity};
 use crate::shape::Shape;
-use crate::contours::BroadPhaseKind;
 
 /// How topology may change.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]

@@ -72,4 +72,3 @@ fn median(v: &mut [f64]) -> Option<f64> {
     v.select_nth_unstable_by(m, |a, b| a.total_cmp(b));
     Some(v[m])
 }
-

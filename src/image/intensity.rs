@@ -149,4 +149,3 @@ pub fn otsu_means(image: &Field) -> (f64, f64) {
     };
     (m0 / 255.0, m1 / 255.0)
 }
-

@@ -203,4 +203,3 @@ pub fn decision_field(
         sign: s,
     }
 }
-
