@@ -15,7 +15,8 @@
 //! P(boundary)): the boundary band cuts touching objects apart.
 
 use super::{Probabilities, BACKGROUND, BOUNDARY, OBJECT};
-use crate::evolution::{Field, Shape};
+use crate::image::Field;
+use crate::shape::Shape;
 use crate::geometry::Point;
 
 /// The image a run reads: P(object) when `keeps_topology` is false, else
@@ -52,7 +53,7 @@ pub fn seeds(p: &Probabilities) -> Vec<Shape> {
         let mut size = 0;
         while let Some(i) = stack.pop() {
             size += 1;
-            for j in crate::evolution::field::neighbours4(i, w, h) {
+            for j in crate::image::field::neighbours4(i, w, h) {
                 if core[j] && label[j] == 0 {
                     label[j] = l;
                     stack.push(j);

@@ -10,6 +10,7 @@
 pub mod features;
 pub mod filters;
 pub mod forest;
+pub mod guide;
 pub mod strokes;
 
 pub use features::{FeatureSet, Features};
