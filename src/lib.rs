@@ -30,6 +30,7 @@ pub mod contours;
 pub mod evolution;
 pub mod geometry;
 pub mod io;
+pub mod job;
 pub mod topology;
 
 pub use contours::{ContourId, ContourSet, RingError, VertexId};
