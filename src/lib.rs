@@ -38,6 +38,7 @@ pub mod evolution;
 pub mod geometry;
 pub mod image;
 pub mod io;
+pub mod job;
 pub mod learn;
 pub mod shape;
 pub mod topology;

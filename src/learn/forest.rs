@@ -11,9 +11,10 @@
 //!   training values (as LightGBM and scikit-learn's histogram forests do), so a split
 //!   search is a histogram per feature rather than a sort; thresholds are the midpoints
 //!   between training values, as CART's;
-//! - prediction walks a block of pixels through one tree at a time, every leaf looping
-//!   to itself, for exactly the tree's depth: no branch depends on the data, and the
-//!   block's features stay in cache across the trees.
+//! - prediction walks a chunk of pixels through one tree at a time, eight neighbouring
+//!   pixels in lockstep, every leaf looping to itself until all eight have arrived: the
+//!   walks' loads overlap, the one branch is predictable (neighbours mostly end in
+//!   leaves of one depth), and the chunk's features stay in cache across the trees.
 //!
 //! tests/learn_forest.rs checks the predictions against smartcore's forest trained on
 //! the same data.
@@ -357,15 +358,22 @@ impl Forest {
             for p in (0..n).step_by(LANES) {
                 let lanes = LANES.min(n - p);
                 let mut at = [root; LANES];
-                // Eight walks in lockstep, each exactly `depth` steps (a leaf loops to
-                // itself): no branch depends on the data, and the loads overlap.
+                // Eight walks in lockstep (a leaf loops to itself): the loads overlap,
+                // and the one branch, "all eight in leaves", is as predictable as
+                // neighbouring pixels are alike.
                 for _ in 0..depth {
+                    let mut moving = false;
                     for k in 0..LANES {
                         // Lanes past the chunk's end re-read its last pixel.
                         let px = p + k.min(lanes - 1);
                         let nd = nodes[at[k] as usize];
                         let v = buf[px * nf + nd.feature as usize];
-                        at[k] = if v <= nd.threshold { nd.left } else { nd.right };
+                        let next = if v <= nd.threshold { nd.left } else { nd.right };
+                        moving |= next != at[k];
+                        at[k] = next;
+                    }
+                    if !moving {
+                        break;
                     }
                 }
                 for (k, &a) in at.iter().enumerate().take(lanes) {
