@@ -85,7 +85,10 @@ fn bench_one(name: &str, width: usize, height: usize, image: &[f32], strokes: &S
             hit += (best[i] == l) as usize;
         }
     }
-    assert!(hit * 100 >= 95 * total, "{name}: {hit}/{total} stroke pixels");
+    assert!(
+        hit * 100 >= 95 * total,
+        "{name}: {hit}/{total} stroke pixels"
+    );
     let labelled = total as f64 / (width * height) as f64;
     let scale = (512.0 * 512.0) / (width * height) as f64;
     println!(
@@ -95,7 +98,10 @@ fn bench_one(name: &str, width: usize, height: usize, image: &[f32], strokes: &S
     );
     println!("  features (pyramid)   cpu {fc:.3} s  wall {fw:.3} s");
     println!("  features (direct)    cpu {dc:.3} s  wall {dw:.3} s");
-    println!("  train ({} trees)     cpu {tc:.3} s  wall {tw:.3} s", p.trees);
+    println!(
+        "  train ({} trees)     cpu {tc:.3} s  wall {tw:.3} s",
+        p.trees
+    );
     println!("  predict              cpu {pc:.3} s  wall {pw:.3} s");
     println!(
         "  per 512²: features + predict cpu {:.3} s, wall {:.3} s",

@@ -44,7 +44,11 @@ fn reference(img: &Plane, sigma: f64) -> Vec<Vec<f64>> {
     );
     let smooth = direct(img, &g, &g);
     let (ix, iy) = (direct(img, &d, &g), direct(img, &g, &d));
-    let (ixx, iyy, ixy) = (direct(img, &dd, &g), direct(img, &g, &dd), direct(img, &d, &d));
+    let (ixx, iyy, ixy) = (
+        direct(img, &dd, &g),
+        direct(img, &g, &dd),
+        direct(img, &d, &d),
+    );
     let g66 = kernel(0.66 * sigma, Order::Smooth);
     let narrow = direct(img, &g66, &g66);
     let outer = kernel(0.5 * sigma, Order::Smooth);

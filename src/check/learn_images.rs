@@ -32,7 +32,11 @@ pub fn touching_rods(w: usize, h: usize, len: usize, width: usize) -> (Vec<f32>,
         row += 1;
     }
     let inside = |x: isize, y: isize| {
-        x >= 0 && y >= 0 && (x as usize) < w && (y as usize) < h && labels[y as usize * w + x as usize] > 0
+        x >= 0
+            && y >= 0
+            && (x as usize) < w
+            && (y as usize) < h
+            && labels[y as usize * w + x as usize] > 0
     };
     let mut image = vec![0.6f32; w * h];
     for y in 0..h as isize {

@@ -153,7 +153,8 @@ pub fn normalise(image: &Plane) -> Plane {
     let step = n.div_ceil(65_536).max(1);
     let mut sample: Vec<f32> = image.data.iter().step_by(step).copied().collect();
     sample.sort_by(f32::total_cmp);
-    let at = |q: f64| sample[((q * (sample.len() - 1) as f64).round() as usize).min(sample.len() - 1)];
+    let at =
+        |q: f64| sample[((q * (sample.len() - 1) as f64).round() as usize).min(sample.len() - 1)];
     let (lo, hi) = (at(0.005), at(0.995));
     let scale = if hi > lo { 1.0 / (hi - lo) } else { 0.0 };
     Plane {
@@ -216,7 +217,9 @@ fn scale_features(base: &Plane, sigma: f64, level: u32, grain: f64) -> Vec<Plane
     let st = |i: usize| eigenvalues(sxx.data[i], sxy.data[i], syy.data[i]);
     let hess = |i: usize| eigenvalues(ixx.data[i] * s2, ixy.data[i] * s2, iyy.data[i] * s2);
     let dog = per_pixel(w, h, |i| smooth.data[i] - narrow.data[i]);
-    let gradient = per_pixel(w, h, |i| s1 * (ix.data[i] * ix.data[i] + iy.data[i] * iy.data[i]).sqrt());
+    let gradient = per_pixel(w, h, |i| {
+        s1 * (ix.data[i] * ix.data[i] + iy.data[i] * iy.data[i]).sqrt()
+    });
     let log = per_pixel(w, h, |i| s2 * (ixx.data[i] + iyy.data[i]));
     vec![
         smooth,

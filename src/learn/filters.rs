@@ -204,7 +204,10 @@ pub fn upsample(src: &Plane, levels: u32, width: usize, height: usize) -> Plane 
     let mut out = Plane::zeros(width, height);
     for_rows(&mut out.data, width, |y, row| {
         let (a, b, t) = ty[y];
-        let (ra, rb) = (&src.data[a * sw..(a + 1) * sw], &src.data[b * sw..(b + 1) * sw]);
+        let (ra, rb) = (
+            &src.data[a * sw..(a + 1) * sw],
+            &src.data[b * sw..(b + 1) * sw],
+        );
         for (o, &(i, j, s)) in row.iter_mut().zip(&tx) {
             let top = ra[i] + s * (ra[j] - ra[i]);
             let bottom = rb[i] + s * (rb[j] - rb[i]);

@@ -287,7 +287,9 @@ impl Forest {
             for _ in 0..n {
                 weight[rng.below(n)] += 1.0;
             }
-            let mut idx: Vec<u32> = (0..n as u32).filter(|&i| weight[i as usize] > 0.0).collect();
+            let mut idx: Vec<u32> = (0..n as u32)
+                .filter(|&i| weight[i as usize] > 0.0)
+                .collect();
             let mut g = Grower {
                 data: &data,
                 y,

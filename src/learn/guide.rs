@@ -14,10 +14,52 @@
 //! The seeds ([`seeds`]) are the connected interiors of P(object) > max(P(background),
 //! P(boundary)): the boundary band cuts touching objects apart.
 
-use super::{Probabilities, BACKGROUND, BOUNDARY, OBJECT};
-use crate::image::Field;
-use crate::shape::Shape;
+use super::{Classifier, FeatureSet, ForestParams, Probabilities, Strokes};
+use super::{BACKGROUND, BOUNDARY, OBJECT};
+use crate::evolution::{Mode, Params, Polarity};
 use crate::geometry::Point;
+use crate::image::{Field, Modality};
+use crate::shape::Shape;
+
+/// A run guided by a classifier: the probabilities, the image the engine reads and the
+/// parameters it reads it with.
+#[derive(Clone, Debug)]
+pub struct Guide {
+    /// Per pixel class probabilities.
+    pub probabilities: Probabilities,
+    /// The image the engine reads ([`probability_field`]).
+    pub field: Field,
+    /// `params` with objects bright, the generic image kind and no local levels: the
+    /// decision level is probability ½.
+    pub params: Params,
+}
+
+impl Guide {
+    /// Trains a classifier on `strokes` painted on `image` and predicts the image;
+    /// `params` are the run's (its mode chooses the field).
+    pub fn train(image: &Field, strokes: &Strokes, params: &Params) -> Self {
+        let set = FeatureSet::default();
+        let features = set.compute(image.width, image.height, &image.data);
+        let clf = Classifier::train_with(set, &features, strokes, &ForestParams::default());
+        Self::new(clf.predict(&features), params)
+    }
+
+    /// The guide of known probabilities.
+    pub fn new(probabilities: Probabilities, params: &Params) -> Self {
+        let field = probability_field(&probabilities, params.mode != Mode::Adaptive);
+        let params = Params {
+            polarity: Polarity::Bright,
+            modality: Modality::Generic,
+            local: false,
+            ..params.clone()
+        };
+        Guide {
+            probabilities,
+            field,
+            params,
+        }
+    }
+}
 
 /// The image a run reads: P(object) when `keeps_topology` is false, else
 /// 1 − P(background).
