@@ -119,7 +119,7 @@ pub fn strokes_for(labels: &[u32], w: usize, h: usize, objects: usize, boundary:
                 });
                 if two {
                     // Every other contact pixel's run of 8: about half the contacts.
-                    if (count / 8) % 2 == 0 {
+                    if (count / 8).is_multiple_of(2) {
                         s[i] = 3;
                     }
                     count += 1;

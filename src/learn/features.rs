@@ -40,7 +40,7 @@ pub struct Features {
     pub width: usize,
     /// Height in pixels.
     pub height: usize,
-    /// One plane per feature, in [`feature_names`] order.
+    /// One plane per feature, in [`FeatureSet::names`] order.
     pub planes: Vec<Vec<f32>>,
 }
 

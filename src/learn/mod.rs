@@ -4,7 +4,7 @@
 //! touching objects — a random forest ([`forest`]) on multiscale filter features
 //! ([`features`]) learns them, and predicts every pixel's class probabilities
 //! ([`Probabilities`]). The contours then read those probabilities instead of the
-//! intensity (see [`Probabilities::object_field`]): the boundary class is what keeps
+//! intensity (see [`guide`]): the boundary class is what keeps
 //! touching cells with no intensity step between them apart.
 
 pub mod features;
