@@ -31,6 +31,7 @@ pub mod evolution;
 pub mod geometry;
 pub mod io;
 pub mod topology;
+pub mod track;
 
 pub use contours::{ContourId, ContourSet, RingError, VertexId};
 pub use geometry::{Aabb, Point};

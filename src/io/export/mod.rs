@@ -3,6 +3,7 @@
 //! overlay), `svg.rs`, `geojson.rs` (QuPath), `csv.rs` — over one bundle, [`Outputs`].
 
 mod csv;
+pub mod ctc;
 mod geojson;
 mod json;
 mod raster;
