@@ -9,10 +9,11 @@ mod run;
 mod segment;
 mod track;
 
+pub use crate::io::Format;
 pub use batch::{batch, BatchArgs};
 pub use bench::{bench, BenchArgs};
-pub use run::{init_shapes, params_for, RunSettings};
-pub use segment::{replay, segment, Format, OutputArgs, ReplayArgs, SegmentArgs};
+pub use run::{init_shapes, job_for, params_for, RunSettings};
+pub use segment::{replay, segment, OutputArgs, ReplayArgs, SegmentArgs};
 pub use track::{track, TrackArgs};
 
 use clap::{Parser, Subcommand};
