@@ -4,7 +4,7 @@
 
 use egui_kittest::kittest::Queryable;
 use egui_kittest::Harness;
-use topocontour::app::{Command, ExportKind, Tool, TopoApp};
+use topocontour::app::{Command, Format, Tool, TopoApp};
 use topocontour::evolution::Shape;
 
 fn harness(app: TopoApp) -> Harness<'static, TopoApp> {
@@ -157,7 +157,7 @@ fn export_writes_an_svg_that_parses_and_reset_clears() {
     }
     let path = temp("app.svg");
     h.state_mut()
-        .send(Command::Export(ExportKind::Svg, path.clone()));
+        .send(Command::Export(Format::Svg, path.clone()));
     h.step();
     let svg = std::fs::read_to_string(&path).expect("export wrote the file");
     let tree =
@@ -346,9 +346,9 @@ fn export_labels_and_roi_set() {
         dir.join(format!("topocontour-app-{}.zip", std::process::id())),
     );
     h.state_mut()
-        .send(Command::Export(ExportKind::Labels, tif.clone()));
+        .send(Command::Export(Format::Labels, tif.clone()));
     h.state_mut()
-        .send(Command::Export(ExportKind::Roi, zip.clone()));
+        .send(Command::Export(Format::Roi, zip.clone()));
     h.step();
     assert!(
         h.state().status.error.is_none(),
@@ -715,11 +715,11 @@ fn a_session_replays_hand_edits_and_force_changes() {
     );
     assert_eq!(other.state().doc.settings.params.weights.bend, 0.2);
     // Headless, the same session gives the same contours.
-    let (ev, _) = topocontour::io::session::Session::read(&path)
+    let run = topocontour::io::session::Session::read(&path)
         .unwrap()
-        .replay(&path)
+        .replay(&path, None)
         .unwrap();
-    let set = ev.contours();
+    let set = run.ev.contours();
     let headless: Vec<_> = set.contour_ids().map(|id| set.ring_points(id)).collect();
     assert_eq!(headless, want);
     let _ = std::fs::remove_file(path);
@@ -757,7 +757,7 @@ fn the_object_table_is_linked_to_the_canvas() {
 /// a typed one (here: open an image, then export next to it under the image's name).
 #[test]
 fn the_path_field_stands_in_for_a_file_dialog() {
-    use topocontour::app::{ExportKind, PathPrompt, PathPurpose};
+    use topocontour::app::{PathPrompt, PathPurpose};
     let mut h = harness(TopoApp::default());
     h.step();
     h.state_mut().view.path_prompt = Some(PathPrompt {
@@ -776,16 +776,13 @@ fn the_path_field_stands_in_for_a_file_dialog() {
     );
     assert_eq!(h.state().doc.image_name, "image.png");
     assert!(h.state().view.path_prompt.is_none());
-    assert_eq!(
-        ExportKind::Labels.default_name("image.png"),
-        "image.labels.tif"
-    );
+    assert_eq!(Format::Labels.file_name("image"), "image.labels.tif");
     let out = temp("prompt.svg");
     h.state_mut().send(Command::WrapBorder(4.0));
     h.state_mut().send(Command::Step(2));
     h.step();
     h.state_mut().view.path_prompt = Some(PathPrompt {
-        purpose: PathPurpose::Export(ExportKind::Svg),
+        purpose: PathPurpose::Export(Format::Svg),
         text: out.display().to_string(),
     });
     h.step();
@@ -849,10 +846,8 @@ fn a_tiff_stack_opens_with_its_pages_and_pixel_size() {
     assert_eq!(h.state().doc.shapes.len(), 1, "shapes stay");
     h.state_mut().send(Command::Step(3));
     let csv = temp("app-stack.csv");
-    h.state_mut().send(Command::Export(
-        topocontour::app::ExportKind::Csv,
-        csv.clone(),
-    ));
+    h.state_mut()
+        .send(Command::Export(Format::Csv, csv.clone()));
     h.step();
     assert!(
         h.state().status.error.is_none(),

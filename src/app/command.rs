@@ -4,6 +4,7 @@
 use crate::contours::BroadPhaseKind;
 use crate::evolution::{ForceWeights, Modality, Mode, Polarity, Shape};
 use crate::geometry::Point;
+use crate::io::export::Format;
 use std::path::PathBuf;
 
 /// What a click on the canvas does.
@@ -23,48 +24,6 @@ pub enum Tool {
     /// Push contours with a disc: from inside a region its boundary moves out, from
     /// outside it moves in (merges, splits and holes happen exactly).
     Brush,
-}
-
-/// What an export writes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ExportKind {
-    /// Scalable vector graphics of the contours.
-    Svg,
-    /// GeoJSON as QuPath reads it.
-    GeoJson,
-    /// Binary mask (PNG).
-    Mask,
-    /// One row per contour: measurements.
-    Csv,
-    /// 16-bit label image (TIFF).
-    Labels,
-    /// ImageJ ROI set (zip) for Fiji's ROI Manager.
-    Roi,
-}
-
-impl ExportKind {
-    /// The file name an export of image `image` gets by default.
-    pub fn default_name(self, image: &str) -> String {
-        let stem = super::path_prompt::stem(image);
-        match self {
-            ExportKind::Mask => format!("{stem}.mask.png"),
-            ExportKind::Labels => format!("{stem}.labels.tif"),
-            ExportKind::Roi => format!("{stem}.rois.zip"),
-            _ => format!("{stem}.{}", self.extension()),
-        }
-    }
-
-    /// The file extension of this kind.
-    pub fn extension(self) -> &'static str {
-        match self {
-            ExportKind::Svg => "svg",
-            ExportKind::GeoJson => "geojson",
-            ExportKind::Mask => "png",
-            ExportKind::Csv => "csv",
-            ExportKind::Labels => "tif",
-            ExportKind::Roi => "zip",
-        }
-    }
 }
 
 /// Everything a widget can ask for; applied in one place, [`super::TopoApp::apply`].
@@ -110,9 +69,9 @@ pub enum Command {
     /// Show recorded frame `n` (0: the initialisation).
     SeekFrame(usize),
     /// Write the frame on screen to a file.
-    Export(ExportKind, PathBuf),
+    Export(Format, PathBuf),
     /// Choose a file in a dialog, then export.
-    ExportDialog(ExportKind),
+    ExportDialog(Format),
     /// Objects darker or brighter than the background.
     SetPolarity(Polarity),
     /// The engine.

@@ -1,10 +1,10 @@
 //! Files the app writes and reads: images, exports of the frame on screen and sessions,
 //! with the errors a user can meet.
 
-use super::command::{Command, ExportKind};
+use super::command::Command;
 use super::path_prompt::PathPurpose;
 use super::{Document, Run, TopoApp};
-use crate::evolution::Edit;
+use crate::io::export::Format;
 use crate::io::{OutputFiles, Outputs};
 use std::path::{Path, PathBuf};
 
@@ -20,9 +20,9 @@ pub enum AppError {
     /// Nothing has run yet.
     #[error("nothing to export yet: run the evolution first")]
     NothingToExport,
-    /// A 16-bit label image holds 65,535 labels.
-    #[error("more than 65,535 objects for a 16-bit label image")]
-    TooManyLabels,
+    /// An output could not be rendered (too many labels).
+    #[error(transparent)]
+    Export(#[from] crate::io::export::ExportError),
     /// The session's image is not the one it was saved with.
     #[error("{} changed since the session was saved", .0.display())]
     ImageChanged(PathBuf),
@@ -32,6 +32,9 @@ pub enum AppError {
     /// The run could not start.
     #[error(transparent)]
     Evolve(#[from] crate::evolution::EvolveError),
+    /// A session's job could not start.
+    #[error(transparent)]
+    Job(#[from] crate::job::JobError),
     /// A session could not be read or written.
     #[error(transparent)]
     Session(#[from] crate::io::session::SessionError),
@@ -102,7 +105,7 @@ impl TopoApp {
                 Err(e) => self.status.error = Some(e),
             },
             Command::ExportDialog(kind) => {
-                let name = kind.default_name(&self.doc.image_name);
+                let name = kind.file_name(&super::path_prompt::stem(&self.doc.image_name));
                 let d = self
                     .dialog()
                     .add_filter(kind.extension(), &[kind.extension()])
@@ -193,71 +196,67 @@ impl TopoApp {
             source,
         })?
         .with_edits(&edits)
-        .with_page(doc.stack.page);
-        OutputFiles::prepare(Some(&abs), &[path])?.commit(vec![s.to_json().into_bytes()])?;
+        .with_page(doc.stack.page)
+        .stored_at(path);
+        let s = crate::io::session::Session {
+            pixel_size: doc.stack.pixel.clone(),
+            ..s
+        };
+        OutputFiles::prepare(Some(&abs), &[path])?.commit(vec![s.to_json()?.into_bytes()])?;
         Ok(())
     }
 
-    /// Opens a session: its image, shapes and parameters, its edits as the run's edits
-    /// (each made at its frame), then steps to its frame.
+    /// Opens a session: its image (checked unchanged), then its job — shapes, parameters,
+    /// edits at their frames, where it stopped — driven through a run that records every
+    /// frame ([`crate::job::Job::drive`], as `topocontour replay` runs it).
     fn open_session(&mut self, path: &Path) -> Result<(), AppError> {
         let s = crate::io::session::Session::read(path)?;
-        let image_path = s.image_path(path);
-        self.open_image(image_path.clone());
+        let job = s.job(path, None);
+        self.open_image(job.image.clone());
         if let Some(e) = self.status.error.take() {
             return Err(e);
         }
-        let crc = crate::io::session::file_crc32(&image_path).map_err(|source| AppError::Io {
-            path: image_path.clone(),
+        let crc = crate::io::session::file_crc32(&job.image).map_err(|source| AppError::Io {
+            path: job.image.clone(),
             source,
         })?;
         if crc != s.image.crc32 {
-            return Err(AppError::ImageChanged(image_path));
+            return Err(AppError::ImageChanged(job.image));
         }
-        if s.page > 0 {
-            self.set_page(s.page);
+        if job.page > 0 {
+            self.set_page(job.page);
             if let Some(e) = self.status.error.take() {
                 return Err(e);
             }
         }
-        self.doc.settings.params = s.params.clone();
-        self.doc.shapes = s.shapes.clone();
-        self.reset_run();
-        if !self.ensure_run() {
-            return Err(self.status.error.take().unwrap_or(AppError::NoImage));
+        let doc = &mut self.doc;
+        doc.settings.params = job.params.clone();
+        doc.shapes = job.shapes.clone();
+        if job.pixel_size.is_some() {
+            doc.stack.pixel = job.pixel_size.clone();
         }
-        let run = self.doc.run.take().expect("ensured");
-        self.doc.run = Some(Run::with_edits(run.evolver, s.edits.clone()));
-        self.step_frames(s.frames);
+        let image = doc.image.clone().ok_or(AppError::NoImage)?;
+        let (ev, _) = job.start(&image)?;
+        let mut run = Run::new(ev);
+        job.drive(&mut run)?;
         // The forces on screen are the last ones set on the way.
-        for edit in &s.edits {
-            if let Edit::Forces { weights, step, .. } = *edit {
-                (
-                    self.doc.settings.params.weights,
-                    self.doc.settings.params.step,
-                ) = (weights, step);
-            }
-        }
+        let p = run.evolver.params();
+        (doc.settings.params.weights, doc.settings.params.step) = (p.weights, p.step);
+        doc.shown = run.last();
+        doc.run = Some(run);
         Ok(())
     }
 
     /// Writes the frame on screen (the evolver's state at it) to `path`.
-    fn export(&mut self, kind: ExportKind, path: &Path) -> Result<(), AppError> {
+    fn export(&mut self, format: Format, path: &Path) -> Result<(), AppError> {
         let doc = &self.doc;
-        let Some(run) = &doc.run else {
+        let (Some(run), Some(image)) = (&doc.run, &doc.image) else {
             return Err(AppError::NothingToExport);
         };
         let ev = run.evolver_at(doc.shown);
         let set = ev.filtered_contours(doc.params().min_area);
         let out = Outputs::of(&ev, &set, &doc.image_name).with_pixel_size(doc.stack.pixel.clone());
-        let bytes = match kind {
-            ExportKind::Svg => out.svg().into_bytes(),
-            ExportKind::GeoJson => out.geojson().into_bytes(),
-            ExportKind::Mask => out.mask_png(),
-            ExportKind::Csv => out.csv().into_bytes(),
-            ExportKind::Labels => out.labels_image(true).ok_or(AppError::TooManyLabels)?,
-            ExportKind::Roi => crate::io::roi::roi_zip(out.set),
-        };
+        let bytes = format.render(&out, image, path)?;
         OutputFiles::prepare(doc.image_path.as_deref(), &[path])?.commit(vec![bytes])?;
         Ok(())
     }

@@ -61,14 +61,17 @@ impl TopoApp {
             return;
         }
         let doc = &self.doc;
+        // Seeds found in this image fit no other: each image gets its own.
+        let shapes = if doc.found_seeds {
+            Vec::new()
+        } else {
+            doc.shapes.clone()
+        };
         let job = FolderJob {
-            shapes: if doc.found_seeds {
-                Vec::new()
-            } else {
-                doc.shapes.clone()
+            job: crate::job::Job {
+                auto_seeds: shapes.is_empty(),
+                ..crate::job::Job::new(PathBuf::new(), shapes, doc.params().clone())
             },
-            auto_seeds: doc.found_seeds || doc.shapes.is_empty(),
-            params: doc.params().clone(),
             out: out.clone(),
         };
         let done = Arc::new(AtomicUsize::new(0));

@@ -21,7 +21,8 @@ mod playback;
 mod run;
 mod view;
 
-pub use command::{Command, ExportKind, Gesture, Group, Tool, UndoKey};
+pub use crate::io::export::Format;
+pub use command::{Command, Gesture, Group, Tool, UndoKey};
 pub use document::{Document, ImageStack, Settings};
 pub use files::AppError;
 pub use folder::FolderRun;

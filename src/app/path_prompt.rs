@@ -1,8 +1,9 @@
 //! The built-in path field: where no desktop portal answers a file dialog (a bare X
 //! session, a remote desktop), or the user cancelled it, the path can be typed instead.
 
-use super::command::{Command, ExportKind};
+use super::command::Command;
 use super::{Ctx, TopoApp};
+use crate::io::export::Format;
 use std::path::PathBuf;
 
 /// What a typed path is for.
@@ -11,7 +12,7 @@ pub enum PathPurpose {
     /// An image to open.
     OpenImage,
     /// A file to export to.
-    Export(ExportKind),
+    Export(Format),
     /// A session file to write.
     SaveSession,
     /// A session file to open.

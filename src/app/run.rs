@@ -113,17 +113,6 @@ impl Run {
         }
     }
 
-    /// A run of `evolver` (at frame 0) with `edits` to make at their frames (a session's).
-    pub(super) fn with_edits(mut evolver: Evolver, edits: Vec<Edit>) -> Self {
-        let before = evolver.events().len();
-        redo_due(&mut evolver, &edits);
-        let events = evolver.events()[before..].iter().map(|e| e.event).collect();
-        let mut run = Run::new(evolver);
-        run.history[0].events = events;
-        run.edits = edits;
-        run
-    }
-
     /// The frame the evolver is at (the last one recorded).
     pub fn head(&self) -> usize {
         self.evolver.frames()
@@ -160,7 +149,7 @@ impl Run {
         (rec.energy, rec.converged) = (f.energy, f.converged);
         self.history.truncate(f.index);
         self.history.push(rec);
-        if f.index % CHECKPOINT_EVERY == 0 {
+        if f.index.is_multiple_of(CHECKPOINT_EVERY) {
             self.checkpoints.retain(|(i, _)| *i < f.index);
             self.checkpoints.push((f.index, self.evolver.clone()));
         }
@@ -229,6 +218,29 @@ impl Run {
     /// How many edits wait for a frame the run has not reached again.
     pub fn waiting_edits(&self) -> usize {
         self.edits.len() - self.evolver.edits().len()
+    }
+}
+
+/// A session's job steps the run, so every frame it makes is recorded.
+impl crate::job::Steps for Run {
+    fn frames(&self) -> usize {
+        self.head()
+    }
+    fn is_finished(&self) -> bool {
+        self.evolver.is_finished()
+    }
+    fn step(&mut self) {
+        Run::step(self);
+    }
+    fn run(&mut self) {
+        while !self.evolver.is_finished() {
+            Run::step(self);
+        }
+    }
+    fn edit(&mut self, edit: &Edit) -> Result<(), crate::evolution::EvolveError> {
+        let mut result = Ok(());
+        self.edit_at(self.head(), |ev| result = ev.redo_edit(edit));
+        result
     }
 }
 

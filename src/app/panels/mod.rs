@@ -8,7 +8,7 @@ mod status;
 pub(super) use side::side_panel;
 pub(super) use status::bottom_bar;
 
-use super::{Command, Ctx, ExportKind, Tool};
+use super::{Command, Ctx, Format, Tool};
 use crate::evolution::{Modality, Mode, Polarity};
 
 /// The tool bar: files, tools, the image and engine, then playback on its own row.
@@ -76,31 +76,37 @@ fn files_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
     .on_hover_text("save or reopen the whole state of a segmentation; apply it to a folder");
     ui.menu_button("Export", |ui| {
         for (label, kind, tip) in [
-            ("SVG…", ExportKind::Svg, "the contours as vector graphics"),
+            ("SVG…", Format::Svg, "the contours as vector graphics"),
             (
                 "GeoJSON…",
-                ExportKind::GeoJson,
+                Format::Geojson,
                 "objects with measurements, as QuPath imports them",
             ),
             (
                 "Mask PNG…",
-                ExportKind::Mask,
+                Format::Mask,
                 "white inside the region, black outside",
             ),
             (
                 "Measurements CSV…",
-                ExportKind::Csv,
+                Format::Csv,
                 "one row per object: area, perimeter, circularity, centroid",
             ),
             (
                 "Label image TIFF…",
-                ExportKind::Labels,
-                "16-bit: one label per object, holes 0",
+                Format::Labels,
+                "16-bit: one label per object, numbered as the ids of the CSV, GeoJSON and ROIs; holes 0 (a .png name writes PNG)",
             ),
             (
                 "ImageJ ROIs (Fiji)…",
-                ExportKind::Roi,
+                Format::Roi,
                 "a ROI set for Fiji's ROI Manager; holes as composite ROIs",
+            ),
+            ("Overlay PNG…", Format::Overlay, "the image with the contours drawn"),
+            (
+                "Contours JSON…",
+                Format::Json,
+                "contours and topology events, as topocontour segment writes them",
             ),
         ] {
             menu_entry(cx, ui, label, tip, Command::ExportDialog(kind));
