@@ -29,7 +29,7 @@ fn main() {
     println!("model {:?}", ev.model());
     while !ev.is_converged() && ev.frames() < 3000 {
         let f = ev.step();
-        if f.index % every == 0 || !f.events.is_empty() || f.converged {
+        if f.index.is_multiple_of(every) || !f.events.is_empty() || f.converged {
             println!("frame {} level {} verts {} contours {} area {:.1} speed {:.3} active {:.3} energy {:.1} events {:?}", f.index, f.level, f.vertices, f.contours, f.area, f.mean_speed, f.active_share, f.energy, f.events);
         }
     }

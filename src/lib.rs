@@ -10,7 +10,12 @@
 //! Layers (each uses only those above it):
 //! - [`geometry`]: points, exact orientation, segment intersection;
 //! - [`contours`]: the ring arena [`ContourSet`] and its broad phase [`contours::VertexBins`];
-//! - [`topology`]: motion regions, Directives 1 and 2, topology events.
+//! - [`topology`]: motion regions, Directives 1 and 2, topology events;
+//! - [`image`]: the field and pyramid, the intensity model, local decision levels,
+//!   automatic seeds;
+//! - [`evolution`]: the engines that move contours under image forces.
+//!
+//! [`shape`] holds the shapes a user draws to start a run.
 //!
 //! Cargo features: `gui` (default) builds the desktop app (`app`, eframe/egui), `cli`
 //! (default) the headless command line (`cli`, clap); without default features the
@@ -29,7 +34,10 @@ pub mod cli;
 pub mod contours;
 pub mod evolution;
 pub mod geometry;
+pub mod image;
 pub mod io;
+pub mod job;
+pub mod shape;
 pub mod topology;
 
 pub use contours::{ContourId, ContourSet, RingError, VertexId};

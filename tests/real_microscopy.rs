@@ -5,11 +5,12 @@
 //! touching cells, and a wrap that opens the hole of a ring.
 
 use proptest::prelude::*;
-use topocontour::evolution::local::{box_extreme, box_mean, decision_field, LevelRule};
 use topocontour::evolution::{
     find_seeds, Evolver, Field, IntensityModel, Modality, Params, Polarity, Shape,
 };
 use topocontour::geometry::{winding_number, Point};
+use topocontour::image::filters::{box_extreme, box_mean};
+use topocontour::image::local::{decision_field, LevelRule};
 
 fn image(w: usize, h: usize, mut f: impl FnMut(f64, f64) -> f32) -> Field {
     let data = (0..w * h)
@@ -162,7 +163,7 @@ fn auto_seeds_find_each_of_touching_disks() {
 
 /// Pairs of nuclei side by side along their short axes, equal in brightness: the union's
 /// distance transform peaks once, at the contact, so only the notches of the outline
-/// tell two nuclei (see `evolution::declump`). Each pair gets two seeds, one in each
+/// tell two nuclei (see `image::declump`). Each pair gets two seeds, one in each
 /// nucleus, and grows into two objects of about half the pair; lone nuclei, even one
 /// as wide as a pair, get one seed each.
 #[test]

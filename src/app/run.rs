@@ -111,7 +111,7 @@ impl Run {
         );
         self.history.truncate(f.index);
         self.history.push(rec);
-        if f.index % CHECKPOINT_EVERY == 0 {
+        if f.index.is_multiple_of(CHECKPOINT_EVERY) {
             self.checkpoints.retain(|(i, _)| *i < f.index);
             self.checkpoints.push((f.index, self.evolver.clone()));
         }

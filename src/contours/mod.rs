@@ -15,6 +15,7 @@
 
 pub mod broad_phase;
 mod invariants;
+pub mod measure;
 pub mod staggered_hash;
 pub mod vertex_bins;
 

@@ -2,7 +2,7 @@
 //! seed 004's multiscale schedule, remeshing and convergence test).
 //!
 //! The evolver is thin: it prepares the image once (modality, pyramid, intensity model,
-//! local decision levels; see [`super::local`]), builds the initial rings, and then owns
+//! local decision levels; see [`crate::image::local`]), builds the initial rings, and then owns
 //! an engine ([`super::engine`]), the schedule over pyramid levels
 //! ([`super::schedule`]) and the log of topology events. Every move of the explicit
 //! engines goes through [`ContourSet::move_vertex`], so every topology change is exact
@@ -15,15 +15,19 @@
 
 use super::engine::{Engine, Engines, Frame};
 use super::explicit::Explicit;
-use super::field::{Field, Pyramid};
-use super::forces::{ForceWeights, IntensityModel};
+use super::forces::ForceWeights;
 use super::implicit::{Implicit, ImplicitEngine};
-use super::init::{hints, Shape};
-use super::local::{self, Modality};
 use super::params::{check_params, check_shapes, EvolveError, Mode, Params};
 use super::schedule::Schedule;
 use crate::contours::{ContourId, ContourSet};
 use crate::geometry::{Aabb, Point};
+use crate::image::field::{Field, Pyramid};
+use crate::image::hints::hints;
+use crate::image::intensity::IntensityModel;
+use crate::image::local;
+use crate::image::modality::{self, Modality};
+use crate::image::scale;
+use crate::shape::Shape;
 use crate::topology::TopologyEvent;
 use std::sync::Arc;
 
@@ -130,7 +134,7 @@ impl Evolver {
         let band = (params.modality == Modality::PhaseContrast)
             .then(|| hints(image, init).1)
             .flatten();
-        let image = local::for_modality(image, params.polarity, params.modality, band);
+        let image = modality::for_modality(image, params.polarity, params.modality, band);
         let pyramid = Arc::new(Pyramid::new(&image, params.coarsest_side, 4));
         let coarsest = pyramid.levels.len() - 1;
         let fine = &pyramid.levels[0].image;
@@ -432,14 +436,14 @@ impl Evolver {
     /// Drops outer regions (with their holes) and holes smaller than `min_area`: the
     /// clutter filter of seed 003 §4.
     pub fn filter_clutter(&mut self) {
-        super::measure::drop_small(self.engine.contours_mut(), self.params.min_area);
+        crate::contours::measure::drop_small(self.engine.contours_mut(), self.params.min_area);
     }
 
     /// The contours with regions and holes smaller than `min_area` dropped, the run
     /// untouched (the app exports a frame and plays on).
     pub fn filtered_contours(&self, min_area: f64) -> ContourSet {
         let mut set = self.contours().clone();
-        super::measure::drop_small(&mut set, min_area);
+        crate::contours::measure::drop_small(&mut set, min_area);
         set
     }
 }
@@ -474,7 +478,7 @@ fn decision_levels(
     let fine = &pyramid.levels[0].image;
     let radius = params
         .local_radius
-        .unwrap_or_else(|| local::object_scale(fine, model));
+        .unwrap_or_else(|| scale::object_scale(fine, model));
     let rule = local::LevelRule::new(fine, model, params.modality);
     pyramid
         .levels

@@ -1,28 +1,24 @@
-//! Image-driven evolution (DESIGN layer 4): the image field and pyramid, forces,
-//! initialisations, the engines behind one trait, the schedule, the frame-by-frame
-//! `Evolver` and measurements.
+//! Image-driven evolution: forces, the engines behind one trait, the schedule and the
+//! frame-by-frame `Evolver`. What the image says comes from [`crate::image`].
+//!
+//! The names that moved to [`crate::image`], [`crate::shape`] and
+//! [`crate::contours::measure`] are re-exported here, so `evolution::Field`,
+//! `evolution::Shape`, `evolution::regions` and the rest keep working.
 
-pub mod declump;
 pub mod engine;
 pub mod evolver;
 pub mod explicit;
-pub mod field;
 pub mod forces;
 pub mod implicit;
-pub mod init;
-pub mod local;
-pub mod measure;
 pub mod params;
 pub mod remesh;
 pub mod schedule;
-pub mod seeds;
 
+pub use crate::contours::measure;
+pub use crate::contours::measure::{regions, Region};
+pub use crate::image::{find_seeds, Field, IntensityModel, Modality, Polarity, Pyramid};
+pub use crate::shape::Shape;
 pub use engine::{Engine, Frame};
 pub use evolver::{Edit, Evolver, FrameEvent};
-pub use field::{Field, Pyramid};
-pub use forces::{ForceWeights, IntensityModel, Polarity};
-pub use init::Shape;
-pub use local::Modality;
-pub use measure::{regions, Region};
+pub use forces::ForceWeights;
 pub use params::{EvolveError, Mode, Params};
-pub use seeds::find_seeds;

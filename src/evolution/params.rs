@@ -1,10 +1,10 @@
 //! What an evolution is asked to do: the engine ([`Mode`]), its [`Params`] and why a run
 //! could not start ([`EvolveError`]), with the checks made before anything moves.
 
-use super::forces::{ForceWeights, Polarity};
-use super::init::Shape;
-use super::local::Modality;
+use super::forces::ForceWeights;
 use crate::contours::BroadPhaseKind;
+use crate::image::{Modality, Polarity};
+use crate::shape::Shape;
 
 /// How topology may change.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -55,10 +55,10 @@ pub struct Params {
     /// Broad phase of the crossing search (same results, different speed and memory).
     #[serde(default)]
     pub broad_phase: BroadPhaseKind,
-    /// The kind of image (phase contrast clips the halo; see [`super::local`]).
+    /// The kind of image (phase contrast clips the halo; see [`crate::image::local`]).
     #[serde(default)]
     pub modality: Modality,
-    /// Compare with a local decision level (see [`super::local`]) instead of the global one.
+    /// Compare with a local decision level (see [`crate::image::local`]) instead of the global one.
     #[serde(default = "default_local")]
     pub local: bool,
     /// Radius of the local statistics in pixels; `None`: from the seeds or the image.

@@ -26,12 +26,13 @@ pub mod nucleate;
 pub use motion::{Adaptive, Motion, Preserve, PRESERVE_GAP};
 
 use super::engine::{Engine, Frame};
-use super::field::Pyramid;
-use super::forces::{normal_speed, ForceWeights, IntensityModel};
-use super::local::Decision;
+use super::forces::{normal_speed, ForceWeights};
 use super::remesh::remesh;
 use crate::contours::ContourSet;
 use crate::geometry::{Aabb, Point};
+use crate::image::field::Pyramid;
+use crate::image::local::Decision;
+use crate::image::IntensityModel;
 use crate::topology::{MotionRegion, TopologyEvent};
 use std::sync::Arc;
 
@@ -163,7 +164,7 @@ impl<M: Motion> Engine for Explicit<M> {
             self.last_sign.resize(capacity, 0);
             self.gain.resize(capacity, 1.0);
         }
-        let revisit_all = index % 8 == 0;
+        let revisit_all = index.is_multiple_of(8);
         let mut near = Vec::new();
         for v in order {
             if !self.set.is_alive(v) {

@@ -21,11 +21,11 @@
 //! from the background, so −0.5 is three deviations, over four pixels at once); only the
 //! adaptive engine nucleates (a new hole is a change of topology).
 
-use super::super::field::{neighbours8, Level};
-use super::super::forces::IntensityModel;
-use super::super::local::Decision;
 use crate::contours::ContourSet;
 use crate::geometry::{fill_even_odd, Point};
+use crate::image::field::{neighbours8, Level};
+use crate::image::local::Decision;
+use crate::image::IntensityModel;
 use crate::topology::TopologyEvent;
 
 /// Region score a pixel must reach (or go below, towards background) to open a hole.

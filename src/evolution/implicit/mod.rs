@@ -49,11 +49,11 @@ mod marching_squares;
 mod simple_point;
 
 use super::engine::{Engine, Frame};
-use super::field::Field;
-use super::forces::IntensityModel;
-use super::init::Shape;
 use crate::contours::{BroadPhaseKind, ContourSet};
 use crate::geometry::{signed_area2, winding_number, Aabb, Point};
+use crate::image::field::Field;
+use crate::image::IntensityModel;
+use crate::shape::Shape;
 use crate::topology::TopologyEvent;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;

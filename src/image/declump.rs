@@ -22,8 +22,8 @@
 //! 0.2–0.3 the same on dsb2018. Without the fit test, cuts through the ragged nuclei of
 //! mahotas_nuclear are made at every salience tried.
 
+use super::distance::distance_transform;
 use super::field::neighbours4;
-use super::seeds::distance_transform;
 use crate::geometry::{fill_even_odd, Point};
 
 /// Smallest part, in object disks (π r²).

@@ -1,0 +1,216 @@
+//! Box filters: the mean and the extremes over a (2r+1)² box, in O(1) per pixel whatever
+//! r (running sums; van Herk and Gil-Werman), on whole rows at once so they vectorise.
+
+use super::field::Field;
+
+/// Mean over the (2r+1)² box around each pixel, the box cut to the image (the mean of
+/// its part inside). Separable running sums: a column window slides down the image as
+/// whole rows (added entering, subtracted leaving: vectorised), then a row window along
+/// each row. The column sums are f32, one add and one subtract per row (their drift
+/// over a few thousand rows stays far below an 8-bit grey step); the row's prefix sums
+/// are f64, so their differences keep f32 precision.
+pub fn box_mean(f: &Field, r: usize) -> Field {
+    let (w, h) = (f.width, f.height);
+    let row = |y: usize| &f.data[y * w..(y + 1) * w];
+    let mut out = vec![0f32; w * h];
+    // Column sums over rows [y − r, y + r] ∩ image, as a running window of whole rows.
+    let mut acc = vec![0f32; w];
+    for y in 0..r.min(h) {
+        acc.iter_mut().zip(row(y)).for_each(|(a, &v)| *a += v);
+    }
+    let mut line = vec![0f64; w + 1];
+    for y in 0..h {
+        if y + r < h {
+            acc.iter_mut().zip(row(y + r)).for_each(|(a, &v)| *a += v);
+        }
+        if y > r {
+            acc.iter_mut()
+                .zip(row(y - r - 1))
+                .for_each(|(a, &v)| *a -= v);
+        }
+        let rows = ((y + r + 1).min(h) - y.saturating_sub(r)) as f32;
+        // Prefix sums along the row, in f64: their differences keep f32 precision.
+        let mut run = 0f64;
+        for (x, &a) in acc.iter().enumerate() {
+            run += a as f64;
+            line[x + 1] = run;
+        }
+        let dst = &mut out[y * w..(y + 1) * w];
+        let cut = |x: usize| {
+            let (x0, x1) = (x.saturating_sub(r), (x + r + 1).min(w));
+            ((line[x1] - line[x0]) / (rows as f64 * (x1 - x0) as f64)) as f32
+        };
+        // Where the window lies whole in the row, one reciprocal serves all.
+        let lo = r.min(w);
+        let hi = w.saturating_sub(r).max(lo);
+        let inv = 1.0 / (rows as f64 * (2 * r + 1) as f64);
+        for (x, d) in dst.iter_mut().enumerate().take(lo) {
+            *d = cut(x);
+        }
+        if lo < hi {
+            for ((d, &a), &b) in dst[lo..hi]
+                .iter_mut()
+                .zip(&line[lo + r + 1..hi + r + 1])
+                .zip(&line[lo - r..hi - r])
+            {
+                *d = ((a - b) * inv) as f32;
+            }
+        }
+        for (x, d) in dst.iter_mut().enumerate().skip(hi) {
+            *d = cut(x);
+        }
+    }
+    Field::new(w, h, out)
+}
+
+/// The maximum (`max` true) or minimum over the (2r+1)² box around each pixel, the box
+/// cut to the image. Separable, each pass by van Herk and Gil-Werman: in blocks of 2r + 1
+/// a running extreme from the block's start and one from its end, so every window is one
+/// comparison of two of them (O(1) per pixel, whatever r). Each pass runs on whole rows
+/// at once (element-wise; the horizontal one on the transposed image), so it reads
+/// memory in order and vectorises.
+pub fn box_extreme(f: &Field, r: usize, max: bool) -> Field {
+    // Monomorphised per extreme, so the comparisons inline and vectorise.
+    if max {
+        box_extreme_with(f, r, f32::max, f32::NEG_INFINITY)
+    } else {
+        box_extreme_with(f, r, f32::min, f32::INFINITY)
+    }
+}
+
+fn box_extreme_with(
+    f: &Field,
+    r: usize,
+    pick: impl Fn(f32, f32) -> f32 + Copy,
+    identity: f32,
+) -> Field {
+    let (w, h) = (f.width, f.height);
+    let (mut out, mut ahead, mut behind) = (Vec::new(), Vec::new(), Vec::new());
+    // Horizontal: on the transposed image the columns are rows, extremised as whole
+    // vectors like the vertical pass (a pass along each short row does not vectorise).
+    let columns = transpose(&f.data, w, h);
+    extreme_1d(
+        &columns,
+        h,
+        r,
+        pick,
+        identity,
+        &mut out,
+        &mut ahead,
+        &mut behind,
+    );
+    let rows = transpose(&out, h, w);
+    extreme_1d(
+        &rows,
+        w,
+        r,
+        pick,
+        identity,
+        &mut out,
+        &mut ahead,
+        &mut behind,
+    );
+    Field::new(w, h, out)
+}
+
+/// `data` (`h` rows of `w`) with rows and columns exchanged (`w` rows of `h`).
+fn transpose(data: &[f32], w: usize, h: usize) -> Vec<f32> {
+    let mut t = vec![0f32; w * h];
+    // In tiles, so both sides stay in cache.
+    const T: usize = 32;
+    for y0 in (0..h).step_by(T) {
+        for x0 in (0..w).step_by(T) {
+            for y in y0..(y0 + T).min(h) {
+                for x in x0..(x0 + T).min(w) {
+                    t[x * h + y] = data[y * w + x];
+                }
+            }
+        }
+    }
+    t
+}
+
+/// The running extreme over windows of 2r + 1 items of `src`, an item being `width`
+/// consecutive values (extremised element-wise), items cut at both ends; into `out`.
+#[allow(clippy::too_many_arguments)]
+fn extreme_1d(
+    src: &[f32],
+    width: usize,
+    r: usize,
+    pick: impl Fn(f32, f32) -> f32 + Copy,
+    identity: f32,
+    out: &mut Vec<f32>,
+    ahead: &mut Vec<f32>,
+    behind: &mut Vec<f32>,
+) {
+    let n = src.len() / width;
+    let k = 2 * r + 1;
+    // Padded with r identity items on each side, rounded up to whole blocks.
+    let padded = (n + 2 * r).div_ceil(k) * k;
+    let item = |i: usize| -> Option<&[f32]> {
+        (i >= r && i - r < n).then(|| &src[(i - r) * width..(i - r + 1) * width])
+    };
+    ahead.clear();
+    ahead.resize(padded * width, identity);
+    behind.clear();
+    behind.resize(padded * width, identity);
+    for i in 0..padded {
+        let (cur, prev) = (i * width, i.checked_sub(1).filter(|_| i % k != 0));
+        if let Some(v) = item(i) {
+            ahead[cur..cur + width].copy_from_slice(v);
+        }
+        if let Some(p) = prev {
+            for j in 0..width {
+                ahead[cur + j] = pick(ahead[cur + j], ahead[p * width + j]);
+            }
+        }
+    }
+    for i in (0..padded).rev() {
+        let cur = i * width;
+        if let Some(v) = item(i) {
+            behind[cur..cur + width].copy_from_slice(v);
+        }
+        if (i + 1) % k != 0 && i + 1 < padded {
+            for j in 0..width {
+                behind[cur + j] = pick(behind[cur + j], behind[cur + width + j]);
+            }
+        }
+    }
+    // Window of output item o is padded items [o, o + 2r]: behind[o] covers to its
+    // block's end, ahead[o + 2r] from that block's start (the two overlap or meet).
+    out.clear();
+    out.resize(n * width, identity);
+    for o in 0..n {
+        let (b, a) = (o * width, (o + 2 * r) * width);
+        for j in 0..width {
+            out[o * width + j] = pick(behind[b + j], ahead[a + j]);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn box_extreme_equals_the_brute_force_extreme() {
+        let f = Field::new(7, 5, (0..35).map(|i| ((i * 17) % 11) as f32).collect());
+        for r in 0..4 {
+            for max in [false, true] {
+                let m = box_extreme(&f, r, max);
+                for y in 0..5usize {
+                    for x in 0..7usize {
+                        let mut e = if max { f32::MIN } else { f32::MAX };
+                        for yy in y.saturating_sub(r)..(y + r + 1).min(5) {
+                            for xx in x.saturating_sub(r)..(x + r + 1).min(7) {
+                                let v = f.at(xx, yy);
+                                e = if max { e.max(v) } else { e.min(v) };
+                            }
+                        }
+                        assert_eq!(m.at(x, y), e, "r {r} max {max} at {x},{y}");
+                    }
+                }
+            }
+        }
+    }
+}

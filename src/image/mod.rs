@@ -1,0 +1,34 @@
+//! Image analysis (the layer between topology and evolution): what the image says,
+//! before any contour moves.
+//!
+//! The field and its Gaussian pyramid ([`field`]), box and blur filters ([`filters`]),
+//! the two-class intensity model and polarity ([`intensity`]), the kind of image and
+//! its phase-contrast halo ([`modality`], [`halo`]), the pixel noise and the object
+//! scale ([`noise`], [`scale`]), the local decision levels ([`local`]), the medians
+//! under the user's shapes ([`hints`]); and the automatic seeds built from them: the
+//! distance transform ([`distance`]), persistent maxima ([`maxima`]), the seeds' basins
+//! ([`seeds`], [`outline`]) and their cuts at notches ([`declump`]).
+//!
+//! Nothing here knows contours or engines: the evolution reads the image through this
+//! layer only.
+
+pub mod declump;
+pub mod distance;
+pub mod field;
+pub mod filters;
+pub mod halo;
+pub mod hints;
+pub mod intensity;
+pub mod local;
+pub mod maxima;
+pub mod modality;
+pub mod noise;
+pub mod outline;
+pub mod scale;
+pub mod seeds;
+
+pub use field::{Field, Pyramid};
+pub use intensity::{IntensityModel, Polarity};
+pub use local::Decision;
+pub use modality::Modality;
+pub use seeds::find_seeds;
