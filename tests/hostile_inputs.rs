@@ -57,7 +57,10 @@ fn float_tiff_pages_decode_alike_and_nan_never_reaches_the_engine() {
         let p = path.clone();
         let (image, info) = load_image_page(&p, page).unwrap();
         assert_eq!(info.pages, 2);
-        assert!(image.data.iter().all(|v| v.is_finite() && (0.0..=1.0).contains(v)));
+        assert!(image
+            .data
+            .iter()
+            .all(|v| v.is_finite() && (0.0..=1.0).contains(v)));
         // Scaled from the page's own range: the disc is 0, the background 1.
         assert_eq!(image.data[32 * 64 + 32], 0.0);
         assert_eq!(image.data[2 * 64 + 60], 1.0);
@@ -141,7 +144,10 @@ fn a_wide_brush_costs_about_what_a_narrow_one_does() {
         ev.contours().sanity_check().unwrap();
         events
     });
-    assert!(!events.is_empty(), "the brush from inside merges the two disks");
+    assert!(
+        !events.is_empty(),
+        "the brush from inside merges the two disks"
+    );
 }
 
 #[test]

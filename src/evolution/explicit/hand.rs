@@ -187,13 +187,7 @@ impl<M: Motion> Explicit<M> {
 
     /// One placement of the brush: the vertices inside the disc pushed to its rim, then
     /// the rings remeshed so the next placement finds vertices all along the rim.
-    fn brush_disc(
-        &mut self,
-        c: Point,
-        radius: f64,
-        level: usize,
-        events: &mut Vec<TopologyEvent>,
-    ) {
+    fn brush_disc(&mut self, c: Point, radius: f64, level: usize, events: &mut Vec<TopologyEvent>) {
         let (scale, d_min, d_max) = spacing(level);
         let mut near = Vec::new();
         self.set.vertices_near(
