@@ -42,6 +42,7 @@ pub mod job;
 pub mod learn;
 pub mod shape;
 pub mod topology;
+pub mod track;
 
 pub use contours::{ContourId, ContourSet, RingError, VertexId};
 pub use geometry::{Aabb, Point};
