@@ -25,6 +25,7 @@ pub mod directive1;
 pub mod directive2;
 pub mod events;
 pub mod motion_region;
+pub mod policy;
 pub mod preserve;
 mod quiet;
 
@@ -34,6 +35,7 @@ use directive1::{find_crossings, guard_crossings, NewEdge};
 pub use events::TopologyEvent;
 use events::{assign_ids, NewLoop, OldRing};
 pub use motion_region::MotionRegion;
+pub use policy::TopologyPolicy;
 
 /// Why a move was refused (the set is unchanged).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
@@ -79,6 +81,10 @@ pub enum MoveError {
     /// A parameter along an edge is not in (0, 1).
     #[error("parameter along the edge must lie strictly between 0 and 1")]
     BadParameter,
+    /// The move would cause an event (named by its kind) that the topology policy holds
+    /// back ([`TopologyPolicy`]).
+    #[error("the topology policy holds back a {0}")]
+    Held(&'static str),
 }
 
 impl ContourSet {
@@ -458,10 +464,12 @@ impl ContourSet {
             }
             let b = self.next[a as usize];
             let len = self.pos[a as usize].dist(self.pos[b as usize]);
-            if len <= self.max_edge {
+            // A non-finite length (never from a checked input) must not mean endless
+            // insertions: the loop is bounded whatever the coordinates.
+            if !(len > self.max_edge && len.is_finite()) {
                 continue;
             }
-            self.split_edge(a, (len / self.max_edge).ceil() as usize);
+            self.split_edge(a, (len / self.max_edge).ceil().min(MAX_SPLIT) as usize);
             // Should a split be refused (rounding next to other geometry), the broad phase
             // widens its reach so that correctness never rests on the bound.
             let mut w = a;
@@ -489,6 +497,10 @@ impl ContourSet {
         }
     }
 }
+
+/// Parts one edge is split into at most: far more than an edge inside any accepted image
+/// needs (its diagonal over the smallest edge bound).
+const MAX_SPLIT: f64 = (1u32 << 20) as f64;
 
 /// What [`ContourSet::replace_vertex`] decided before changing anything.
 struct MovePlan {
