@@ -157,6 +157,10 @@ impl Evolver {
                 Engines::Preserve(Explicit::new(set, pyramid, decision, model, w, step)),
                 coarsest,
             ),
+            Mode::Track => (
+                Engines::Track(Explicit::new(set, pyramid, decision, model, w, step)),
+                coarsest,
+            ),
             Mode::Implicit => {
                 let state = Implicit::new(fine, model, init);
                 let engine = ImplicitEngine::new(state, domain, params.broad_phase);
@@ -327,6 +331,7 @@ impl Evolver {
         let (events, lead) = match &mut self.engine {
             Engines::Adaptive(e) => e.hand_drag(v, to, level),
             Engines::Preserve(e) => e.hand_drag(v, to, level),
+            Engines::Track(e) => e.hand_drag(v, to, level),
             Engines::Implicit(_) => (Vec::new(), None),
         };
         self.log_events(&events);
@@ -351,6 +356,7 @@ impl Evolver {
         let events = match &mut self.engine {
             Engines::Adaptive(e) => e.brush(from, to, radius, level),
             Engines::Preserve(e) => e.brush(from, to, radius, level),
+            Engines::Track(e) => e.brush(from, to, radius, level),
             Engines::Implicit(_) => Vec::new(),
         };
         self.log_events(&events);

@@ -25,6 +25,7 @@ pub mod directive1;
 pub mod directive2;
 pub mod events;
 pub mod motion_region;
+pub mod policy;
 pub mod preserve;
 mod quiet;
 
@@ -34,6 +35,7 @@ use directive1::{find_crossings, guard_crossings, NewEdge};
 pub use events::TopologyEvent;
 use events::{assign_ids, NewLoop, OldRing};
 pub use motion_region::MotionRegion;
+pub use policy::TopologyPolicy;
 
 /// Why a move was refused (the set is unchanged).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
@@ -79,6 +81,10 @@ pub enum MoveError {
     /// A parameter along an edge is not in (0, 1).
     #[error("parameter along the edge must lie strictly between 0 and 1")]
     BadParameter,
+    /// The move would cause an event (named by its kind) that the topology policy holds
+    /// back ([`TopologyPolicy`]).
+    #[error("the topology policy holds back a {0}")]
+    Held(&'static str),
 }
 
 impl ContourSet {
