@@ -234,3 +234,34 @@ fn numbers_no_user_could_give_are_refused_before_anything_is_allocated() {
         assert!(err.unwrap().to_string().contains("farther"));
     }
 }
+
+#[cfg(unix)]
+#[test]
+fn an_image_too_large_for_the_memory_left_is_refused_in_one_line() {
+    // A 16000² PNG aborted at 7.45 GB; the run is now estimated and refused before it
+    // starts. Here the address space is limited to 1.5 GB and the image needs about 1.7.
+    let path = tmp("large.png");
+    image::GrayImage::from_pixel(6000, 6000, image::Luma([128u8]))
+        .save(&path)
+        .unwrap();
+    let out = within(60, move || {
+        std::process::Command::new("sh")
+            .arg("-c")
+            .arg("ulimit -v 1500000; exec \"$0\" \"$@\"")
+            .arg(env!("CARGO_BIN_EXE_topocontour"))
+            .args([
+                "segment",
+                path.to_str().unwrap(),
+                "--wrap",
+                "4",
+                "--object",
+                "dark",
+            ])
+            .output()
+            .unwrap()
+    });
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("crop it into tiles"), "{err}");
+}

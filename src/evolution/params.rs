@@ -117,6 +117,18 @@ pub enum EvolveError {
     /// A shape with a non-finite coordinate or a disk larger than the image.
     #[error("a shape of the initialisation is not usable: {0}")]
     BadShape(String),
+    /// The run would need more memory than is left.
+    #[error("a {width}×{height} image needs about {:.1} GB to segment, more than the {:.1} GB this process may use; crop it into tiles and segment each", *.needs as f64 / 1e9, *.limit as f64 / 1e9)]
+    TooLarge {
+        /// Width of the image.
+        width: usize,
+        /// Height of the image.
+        height: usize,
+        /// Bytes the run would need.
+        needs: u64,
+        /// Bytes left.
+        limit: u64,
+    },
     /// A parameter out of its range.
     #[error("parameter {name} must be {what}, got {}", shown(*.value))]
     BadParameter {
@@ -192,6 +204,53 @@ fn shown(v: f64) -> String {
 
 /// Largest force weight accepted.
 const MAX_WEIGHT: f64 = 100.0;
+
+/// Bytes a run holds per pixel of its image at its peak (the image, the pyramid, the
+/// local statistics and decision levels): 44 measured on 2048² and 4096² wraps
+/// (docs/decisions.md), rounded up.
+pub const BYTES_PER_PIXEL: u64 = 48;
+
+/// The memory this process may still use: the smaller of what the system has available
+/// and the address-space limit (`ulimit -v`), if either is known.
+fn memory_limit() -> Option<u64> {
+    let available = std::fs::read_to_string("/proc/meminfo").ok().and_then(|m| {
+        m.lines()
+            .find_map(|l| l.strip_prefix("MemAvailable:"))
+            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
+            .map(|kb| kb * 1024)
+    });
+    #[cfg(unix)]
+    let address_space = {
+        let mut r = libc::rlimit {
+            rlim_cur: 0,
+            rlim_max: 0,
+        };
+        // SAFETY: getrlimit only writes the struct it is given.
+        let ok = unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut r) } == 0;
+        (ok && r.rlim_cur != libc::RLIM_INFINITY).then_some(r.rlim_cur as u64)
+    };
+    #[cfg(not(unix))]
+    let address_space = None;
+    match (available, address_space) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    }
+}
+
+/// A run on a `width` × `height` image fits in the memory left (an image too large
+/// aborted the process part-way instead of saying so).
+pub(crate) fn check_memory(width: usize, height: usize) -> Result<(), EvolveError> {
+    let needs = width as u64 * height as u64 * BYTES_PER_PIXEL;
+    match memory_limit() {
+        Some(limit) if needs > limit => Err(EvolveError::TooLarge {
+            width,
+            height,
+            needs,
+            limit,
+        }),
+        _ => Ok(()),
+    }
+}
 
 /// The parameters that depend on the image: a local radius of at least a pixel and at
 /// most the image's diagonal (its box filters allocate by the radius).
