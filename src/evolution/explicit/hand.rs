@@ -19,7 +19,7 @@ impl<M: Motion> Explicit<M> {
     /// topology event (a remesh joined it to a neighbour), the vertex of its contour
     /// nearest to where it was; after a merge or split the drag has done its work
     /// (`None`).
-    pub fn hand_drag(
+    pub(super) fn drag(
         &mut self,
         v: u32,
         to: Point,
@@ -153,7 +153,7 @@ impl<M: Motion> Explicit<M> {
     /// the topology core. Brushing from inside a region pushes its boundary out (it grows
     /// and may merge with another); from outside pushes it in (it shrinks, may split or
     /// open a hole). Returns the events.
-    pub fn brush(
+    pub(super) fn brush_stroke(
         &mut self,
         from: Point,
         to: Point,
