@@ -36,6 +36,7 @@ pub mod evolution;
 pub mod geometry;
 pub mod image;
 pub mod io;
+pub mod job;
 pub mod shape;
 pub mod topology;
 

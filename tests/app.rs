@@ -677,11 +677,11 @@ fn a_session_replays_hand_edits_and_force_changes() {
     );
     assert_eq!(other.state().settings.weights.bend, 0.2);
     // Headless, the same session gives the same contours.
-    let (ev, _) = topocontour::io::session::Session::read(&path)
+    let run = topocontour::io::session::Session::read(&path)
         .unwrap()
-        .replay(&path)
+        .replay(&path, None)
         .unwrap();
-    let set = ev.contours();
+    let set = run.ev.contours();
     let headless: Vec<_> = set.contour_ids().map(|id| set.ring_points(id)).collect();
     assert_eq!(headless, want);
     let _ = std::fs::remove_file(path);

@@ -238,7 +238,7 @@ fn svg_renders_like_the_mask_and_geojson_parses() {
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(
         lines[0],
-        "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,pixel_size,unit,area_calibrated,perimeter_calibrated"
+        "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,pixel_size,unit,area_calibrated,perimeter_calibrated,contour"
     );
     assert!(
         lines[1].starts_with("\"image.png\","),
@@ -249,7 +249,7 @@ fn svg_renders_like_the_mask_and_geojson_parses() {
     let fields: Vec<&str> = lines[1].split(',').collect();
     assert_eq!(fields[7], "2", "two holes");
     assert_eq!(
-        fields[8..],
+        fields[8..12],
         ["", "", "", ""],
         "no pixel size: no calibration"
     );
@@ -535,7 +535,7 @@ fn batch_writes_one_json_per_image_and_a_summary() {
     let mut lines = summary.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,mean_intensity"
+        "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,mean_intensity,contour"
     );
     let rows: Vec<&str> = lines.collect();
     let mut total = 0;

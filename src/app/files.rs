@@ -84,8 +84,9 @@ impl TopoApp {
             source,
         })?
         .with_edits(&edits)
-        .with_page(self.stack.page);
-        OutputFiles::prepare(Some(&abs), &[path])?.commit(vec![s.to_json().into_bytes()])?;
+        .with_page(self.stack.page)
+        .stored_at(path);
+        OutputFiles::prepare(Some(&abs), &[path])?.commit(vec![s.to_json()?.into_bytes()])?;
         Ok(())
     }
 

@@ -60,9 +60,10 @@ impl TopoApp {
             return;
         }
         let job = FolderJob {
-            shapes: self.shapes.clone(),
-            auto_seeds: false,
-            params: self.params(),
+            job: crate::job::Job {
+                auto_seeds: self.shapes.is_empty(),
+                ..crate::job::Job::new(PathBuf::new(), self.shapes.clone(), self.params())
+            },
             out: out.clone(),
         };
         let done = Arc::new(AtomicUsize::new(0));

@@ -10,7 +10,7 @@
 //! name order.
 
 use super::run::{evolve, RunSettings};
-use super::segment::write_outputs;
+use super::segment::{counted, write_outputs};
 use super::{bad, note, Failure, Format};
 use crate::io::folder::{file_name, list_images, stem, summary_rows, SUMMARY_HEADER};
 use crate::io::{OutputFiles, Outputs};
@@ -92,11 +92,12 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
     });
     bar.finish_and_clear();
     let mut rows = String::from(SUMMARY_HEADER);
-    let (mut done, mut failed) = (0, 0);
+    let (mut done, mut failed, mut objects) = (0, 0, 0);
     for (img, r) in &results {
         match r {
             Some(Ok(lines)) => {
                 done += 1;
+                objects += lines.len();
                 lines.iter().for_each(|l| rows.push_str(l));
             }
             Some(Err(f)) => {
@@ -122,6 +123,12 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
     if failed > 0 {
         return Err(bad(format!("{failed} of {} images failed", images.len())));
     }
+    note(&format!(
+        "{} segmented, {}; outputs and summary.csv in {}",
+        counted(done, "image"),
+        counted(objects, "object"),
+        a.out.display()
+    ));
     Ok(())
 }
 
@@ -135,7 +142,7 @@ fn one_image(img: &Path, a: &BatchArgs) -> ImageResult {
         .collect();
     let refs: Vec<&Path> = paths.iter().map(PathBuf::as_path).collect();
     let files = OutputFiles::prepare(Some(img), &refs).map_err(|e| bad(e.to_string()))?;
-    let run = evolve(img, &a.run)?;
+    let (_, run) = evolve(img, &a.run)?;
     let (ev, image) = (&run.ev, &run.image);
     let name = file_name(img);
     let out = Outputs::of(ev, ev.contours(), &name).with_pixel_size(run.pixel.clone());

@@ -1,6 +1,6 @@
 //! `topocontour bench CASES…`: the whole pipeline timed in-process on case folders.
 
-use super::run::evolve;
+use super::run::{choices, evolve, BROAD_PHASES, MODES};
 use super::{bad, Failure, SegmentArgs};
 use crate::contours::BroadPhaseKind;
 use crate::evolution::Mode;
@@ -18,10 +18,10 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 10)]
     pub runs: usize,
     /// Broad phase of the crossing search.
-    #[arg(long, value_enum, default_value = "bins")]
+    #[arg(long, default_value = "bins", value_parser = choices::<BroadPhaseKind>(BROAD_PHASES))]
     pub broad_phase: BroadPhaseKind,
     /// Engine to time.
-    #[arg(long, value_enum, default_value = "adaptive")]
+    #[arg(long, default_value = "adaptive", value_parser = choices::<Mode>(MODES))]
     pub mode: Mode,
 }
 
@@ -62,7 +62,7 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
         let (mut frames, mut contours) = (0, 0);
         for _ in 0..b.runs.max(1) {
             let t = std::time::Instant::now();
-            let ev = evolve(&args.image, &args.run)?.ev;
+            let ev = evolve(&args.image, &args.run)?.1.ev;
             let out = Outputs::of(&ev, ev.contours(), "");
             std::hint::black_box((out.json(), out.mask_png()));
             times.push(t.elapsed().as_secs_f64() * 1e3);

@@ -8,10 +8,11 @@ mod bench;
 mod run;
 mod segment;
 
+pub use crate::io::Format;
 pub use batch::{batch, BatchArgs};
 pub use bench::{bench, BenchArgs};
-pub use run::{init_shapes, params_for, RunSettings};
-pub use segment::{replay, segment, Format, OutputArgs, ReplayArgs, SegmentArgs};
+pub use run::{init_shapes, job_for, params_for, RunSettings};
+pub use segment::{replay, segment, OutputArgs, ReplayArgs, SegmentArgs};
 
 use clap::{Parser, Subcommand};
 use std::io::Write;

@@ -1,12 +1,14 @@
 //! What every subcommand that segments shares: the initialisation and parameter flags
-//! ([`RunSettings`]), their checks against the image, and one evolution to the end.
+//! ([`RunSettings`]), their checks against the image, and the [`Job`] they describe.
 
 use super::{bad, Failure};
 use crate::contours::BroadPhaseKind;
-use crate::evolution::{find_seeds, Evolver, Field, Modality, Mode, Params, Polarity, Shape};
+use crate::evolution::{Modality, Mode, Params, Polarity, Shape};
 use crate::geometry::Point;
-use crate::io::{load_image_page, PixelSize};
-use clap::Args;
+use crate::io::PixelSize;
+use crate::job::{Job, JobRun};
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use clap::{Args, ValueEnum};
 use std::path::Path;
 
 /// How to initialise and evolve: the flags `segment` and `batch` share.
@@ -28,8 +30,8 @@ pub struct RunSettings {
     /// Whether objects are darker or brighter than the background.
     #[arg(long, value_enum)]
     pub object: Polarity,
-    /// The engine: topology adapts, or is kept (explicitly or implicitly).
-    #[arg(long, value_enum, default_value = "adaptive")]
+    /// What may happen to the objects' shapes as the contours move.
+    #[arg(long, default_value = "adaptive", value_parser = choices::<Mode>(MODES))]
     pub mode: Mode,
     /// The kind of image: phase contrast treats the bright halo as background.
     #[arg(long, value_enum, default_value = "generic")]
@@ -48,8 +50,8 @@ pub struct RunSettings {
     /// Drop regions and holes smaller than this (square pixels).
     #[arg(long, value_name = "PX", allow_negative_numbers = true)]
     pub min_area: Option<f64>,
-    /// Broad phase of the crossing search: vertex bins or staggered hashing (same result).
-    #[arg(long, value_enum, default_value = "bins")]
+    /// How the crossing search finds nearby edges (same result either way).
+    #[arg(long, default_value = "bins", value_parser = choices::<BroadPhaseKind>(BROAD_PHASES))]
     pub broad_phase: BroadPhaseKind,
     /// The page of a multi-page TIFF (a stack) to segment, from 1.
     #[arg(long, value_name = "N")]
@@ -84,6 +86,39 @@ impl RunSettings {
             unit: "µm".into(),
         }
     }
+}
+
+/// The engines in the user's words (the library's docs name the papers instead).
+pub(super) const MODES: &[(&str, &str)] = &[
+    (
+        "adaptive",
+        "contours merge where objects touch, split where one pinches off, and open or close holes",
+    ),
+    (
+        "preserve",
+        "each contour keeps its topology: touching objects stay apart, no hole opens or closes",
+    ),
+    (
+        "implicit",
+        "as preserve, computed on a pixel grid (fast marching) instead of moving the polygon",
+    ),
+];
+
+/// The broad phases in the user's words.
+pub(super) const BROAD_PHASES: &[(&str, &str)] = &[
+    ("bins", "a grid of bins over the image"),
+    ("hash", "four staggered hash grids"),
+];
+
+/// A parser of `T`'s values that shows `help` for each (name, what it does).
+pub(super) fn choices<T: ValueEnum + Clone + Send + Sync + 'static>(
+    help: &'static [(&'static str, &'static str)],
+) -> impl TypedValueParser<Value = T> {
+    PossibleValuesParser::new(
+        help.iter()
+            .map(|&(name, h)| PossibleValue::new(name).help(h)),
+    )
+    .map(|name| T::from_str(&name, false).expect("every listed name is a value"))
 }
 
 fn parse_numbers<const N: usize>(s: &str) -> Result<[f64; N], String> {
@@ -203,36 +238,15 @@ pub fn params_for(a: &RunSettings) -> Result<Params, Failure> {
     Ok(p)
 }
 
-/// A finished evolution with what it started from.
-pub(super) struct Evolved {
-    /// The evolver, run to its end, clutter filtered.
-    pub ev: Evolver,
-    /// The image.
-    pub image: Field,
-    /// The shapes it started from (automatic seeds included).
-    pub shapes: Vec<Shape>,
-    /// The pixel size (the flag's, or the file's).
-    pub pixel: Option<PixelSize>,
-    /// The page segmented (0-based).
-    pub page: usize,
-}
-
-/// Loads `path` (page `--page` of a stack) and evolves the contours to the end.
-pub(super) fn evolve(path: &Path, a: &RunSettings) -> Result<Evolved, Failure> {
+/// The job the settings describe on the image at `path`, every flag checked; its shapes
+/// come from [`init_shapes`] once the image's size is known.
+pub fn job_for(path: &Path, a: &RunSettings) -> Result<Job, Failure> {
     let page = match a.page {
         Some(0) => return Err(bad("--page counts from 1")),
         Some(n) => n - 1,
         None => 0,
     };
-    let (image, info) = load_image_page(path, page).map_err(|e| bad(e.to_string()))?;
-    if a.page.is_none() && info.pages > 1 {
-        super::note(&format!(
-            "note: {} holds {} pages; segmenting page 1 (choose another with --page)",
-            path.display(),
-            info.pages
-        ));
-    }
-    let pixel = match a.pixel_size {
+    let pixel_size = match a.pixel_size {
         Some(size) if !(size.is_finite() && size > 0.0) => {
             return Err(bad(format!(
                 "--pixel-size must be a number > 0, got {size}"
@@ -242,32 +256,48 @@ pub(super) fn evolve(path: &Path, a: &RunSettings) -> Result<Evolved, Failure> {
             size,
             unit: a.unit.clone(),
         }),
-        None => info.pixel_size,
+        None => None,
     };
-    let mut shapes = init_shapes(a, image.width, image.height)?;
-    let params = params_for(a)?;
-    if a.auto_seeds {
-        let found = find_seeds(&image, params.polarity, params.modality);
-        if found.is_empty() && shapes.is_empty() {
-            return Err(bad(format!(
-                "--auto-seeds found no {} object in {}",
-                match a.object {
-                    Polarity::Dark => "dark",
-                    Polarity::Bright => "bright",
-                },
-                path.display()
-            )));
-        }
-        shapes.extend(found);
-    }
-    let mut ev = Evolver::new(&image, &shapes, params).map_err(|e| bad(e.to_string()))?;
-    ev.run();
-    ev.filter_clutter();
-    Ok(Evolved {
-        ev,
-        image,
-        shapes,
-        pixel,
+    Ok(Job {
         page,
+        auto_seeds: a.auto_seeds,
+        pixel_size,
+        ..Job::new(path, Vec::new(), params_for(a)?)
     })
+}
+
+/// Loads `path` (page `--page` of a stack) and runs the job the settings describe on it:
+/// what `segment` and each image of `batch` do. Returns the job too (a session records it).
+pub(super) fn evolve(path: &Path, a: &RunSettings) -> Result<(Job, JobRun), Failure> {
+    let mut job = job_for(path, a)?;
+    let (image, info) = job.load().map_err(|e| bad(e.to_string()))?;
+    if a.page.is_none() && info.pages > 1 {
+        super::note(&format!(
+            "note: {} holds {} pages; segmenting page 1 (choose another with --page)",
+            path.display(),
+            info.pages
+        ));
+    }
+    job.shapes = init_shapes(a, image.width, image.height)?;
+    let run = job.run_on(image, info).map_err(|e| bad(e.to_string()))?;
+    Ok((job, run))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The user's words list every value of the enums, and only those.
+    #[test]
+    fn choices_name_every_value() {
+        fn names<T: ValueEnum>() -> Vec<String> {
+            T::value_variants()
+                .iter()
+                .filter_map(|v| v.to_possible_value().map(|p| p.get_name().to_string()))
+                .collect()
+        }
+        let listed = |h: &[(&str, &str)]| h.iter().map(|(n, _)| n.to_string()).collect::<Vec<_>>();
+        assert_eq!(names::<Mode>(), listed(MODES));
+        assert_eq!(names::<BroadPhaseKind>(), listed(BROAD_PHASES));
+    }
 }

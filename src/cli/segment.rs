@@ -1,12 +1,12 @@
 //! `topocontour segment IMAGE …`: one image, the outputs the flags name, all written or
 //! none; and the evaluation case folders' `case.json`.
 
-use super::run::{evolve, Evolved, RunSettings};
+use super::run::{evolve, RunSettings};
 use super::{bad, note, Failure};
 use crate::evolution::{Evolver, Modality, Polarity};
 use crate::io::folder::file_name;
 use crate::io::session::Session;
-use crate::io::{OutputFiles, Outputs};
+use crate::io::{Format, OutputFiles, Outputs};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
 
@@ -56,72 +56,6 @@ pub struct OutputArgs {
     pub roi: Option<PathBuf>,
 }
 
-/// An output format.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Format {
-    /// Contours and events (the CLI contract).
-    Json,
-    /// Mask PNG, 255 inside.
-    Mask,
-    /// SVG of the regions.
-    Svg,
-    /// GeoJSON polygons as QuPath reads them.
-    Geojson,
-    /// Measurements, one row per region.
-    Csv,
-    /// 16-bit label image (TIFF).
-    Labels,
-    /// The image with the contours drawn (PNG).
-    Overlay,
-    /// ImageJ ROI set (zip).
-    Roi,
-}
-
-impl Format {
-    /// The output file name for an image with file stem `stem` (batch runs).
-    pub fn file_name(self, stem: &str) -> String {
-        match self {
-            Format::Json => format!("{stem}.json"),
-            Format::Mask => format!("{stem}.mask.png"),
-            Format::Svg => format!("{stem}.svg"),
-            Format::Geojson => format!("{stem}.geojson"),
-            Format::Csv => format!("{stem}.csv"),
-            Format::Labels => format!("{stem}.labels.tif"),
-            Format::Overlay => format!("{stem}.overlay.png"),
-            Format::Roi => format!("{stem}.roi.zip"),
-        }
-    }
-
-    /// The bytes of this output; `path` chooses TIFF or PNG for labels.
-    pub fn render(
-        self,
-        out: &Outputs,
-        image: &crate::evolution::Field,
-        path: &Path,
-    ) -> Result<Vec<u8>, Failure> {
-        Ok(match self {
-            Format::Json => out.json().into_bytes(),
-            Format::Mask => out.mask_png(),
-            Format::Svg => out.svg().into_bytes(),
-            Format::Geojson => out.geojson().into_bytes(),
-            Format::Csv => out.csv().into_bytes(),
-            Format::Overlay => out.overlay_png(image),
-            Format::Roi => crate::io::roi::roi_zip(out.set),
-            Format::Labels => {
-                let tiff = path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
-                    e.eq_ignore_ascii_case("tif") || e.eq_ignore_ascii_case("tiff")
-                });
-                out.labels_image(tiff).ok_or_else(|| {
-                    bad(format!(
-                        "cannot write {}: more than 65,535 objects for a 16-bit label image",
-                        path.display()
-                    ))
-                })?
-            }
-        })
-    }
-}
-
 impl OutputArgs {
     /// The outputs the flags name, in a fixed order.
     pub fn list(&self) -> Vec<(Format, &Path)> {
@@ -152,7 +86,10 @@ pub(super) fn write_outputs(
 ) -> Result<(), Failure> {
     let mut bytes = wanted
         .iter()
-        .map(|&(f, p)| f.render(out, image, p))
+        .map(|&(f, p)| {
+            f.render(out, image, p)
+                .map_err(|e| bad(format!("cannot write {}: {e}", p.display())))
+        })
         .collect::<Result<Vec<_>, _>>()?;
     bytes.extend(extra);
     files.commit(bytes).map_err(|e| bad(e.to_string()))
@@ -165,15 +102,10 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
     let mut paths: Vec<&Path> = wanted.iter().map(|&(_, p)| p).collect();
     paths.extend(a.save_session.as_deref());
     let files = OutputFiles::prepare(Some(&a.image), &paths).map_err(|e| bad(e.to_string()))?;
-    let Evolved {
-        ev,
-        image,
-        shapes,
-        pixel,
-        page,
-    } = evolve(&a.image, &a.run)?;
+    let (job, run) = evolve(&a.image, &a.run)?;
+    let ev = &run.ev;
     let name = file_name(&a.image);
-    let out = Outputs::of(&ev, ev.contours(), &name).with_pixel_size(pixel);
+    let out = Outputs::of(ev, ev.contours(), &name).with_pixel_size(run.pixel.clone());
     if out.held > 0 {
         // The user asked for fixed topology; say where it mattered.
         note(&format!(
@@ -191,25 +123,51 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
         ));
     }
     let session = match &a.save_session {
-        Some(_) => {
-            // The image by its absolute path: the session may be read from anywhere.
-            let abs = a.image.canonicalize().unwrap_or_else(|_| a.image.clone());
-            let s = Session::new(
-                &abs,
-                &image,
-                shapes,
-                ev.start_params().clone(),
-                ev.frames(),
-                true,
-            )
-            .map_err(|e| bad(format!("cannot read {}: {e}", a.image.display())))?
-            .with_page(page);
-            Some(s.to_json().into_bytes())
+        Some(to) => {
+            let s = Session::of_run(&job, &run)
+                .map_err(|e| bad(format!("cannot read {}: {e}", a.image.display())))?
+                .stored_at(to);
+            Some(s.to_json().map_err(|e| bad(e.to_string()))?.into_bytes())
         }
         None => None,
     };
-    write_outputs(files, &wanted, &out, &image, session)?;
-    Ok(ev)
+    write_outputs(files, &wanted, &out, &run.image, session)?;
+    note(&done_line(&name, &out, &wanted, a.save_session.as_deref()));
+    Ok(run.ev)
+}
+
+/// The one line a successful run ends with, on stderr (stdout stays for data): what was
+/// found and what was written.
+pub(super) fn done_line(
+    name: &str,
+    out: &Outputs,
+    wanted: &[(Format, &Path)],
+    session: Option<&Path>,
+) -> String {
+    let regions = crate::evolution::regions(out.set);
+    let holes: usize = regions.iter().map(|r| r.holes.len()).sum();
+    let how = if out.converged { "settled" } else { "stopped" };
+    let mut written: Vec<String> = wanted
+        .iter()
+        .map(|(_, p)| p.display().to_string())
+        .collect();
+    written.extend(session.map(|p| p.display().to_string()));
+    let wrote = if written.is_empty() {
+        "no output asked for (--json, --mask, --csv, …)".to_string()
+    } else {
+        format!("wrote {}", written.join(", "))
+    };
+    format!(
+        "{name}: {}, {}, {how} after {} frames; {wrote}",
+        counted(regions.len(), "object"),
+        counted(holes, "hole"),
+        out.frames
+    )
+}
+
+/// `n` and the word, plural unless one.
+pub(super) fn counted(n: usize, word: &str) -> String {
+    format!("{n} {word}{}", if n == 1 { "" } else { "s" })
 }
 
 /// The arguments of `replay`.
@@ -217,6 +175,10 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
 pub struct ReplayArgs {
     /// A session file (from `segment --save-session` or the app).
     pub session: PathBuf,
+    /// The session's image, where it is now (it moved); its size and checksum must
+    /// still match.
+    #[arg(long, value_name = "PATH")]
+    pub image: Option<PathBuf>,
     /// The outputs.
     #[command(flatten)]
     pub out: OutputArgs,
@@ -227,14 +189,19 @@ pub fn replay(a: &ReplayArgs) -> Result<Evolver, Failure> {
     let session = Session::read(&a.session).map_err(|e| bad(e.to_string()))?;
     let wanted = a.out.list();
     let paths: Vec<&Path> = wanted.iter().map(|&(_, p)| p).collect();
-    let image_path = session.image_path(&a.session);
+    let image_path = a
+        .image
+        .clone()
+        .unwrap_or_else(|| session.image_path(&a.session));
     let files = OutputFiles::prepare(Some(&image_path), &paths).map_err(|e| bad(e.to_string()))?;
-    let (mut ev, image) = session.replay(&a.session).map_err(|e| bad(e.to_string()))?;
-    ev.filter_clutter();
+    let run = session
+        .replay(&a.session, Some(&image_path))
+        .map_err(|e| bad(e.to_string()))?;
     let name = file_name(&image_path);
-    let out = Outputs::of(&ev, ev.contours(), &name);
-    write_outputs(files, &wanted, &out, &image, None)?;
-    Ok(ev)
+    let out = Outputs::of(&run.ev, run.ev.contours(), &name).with_pixel_size(run.pixel.clone());
+    write_outputs(files, &wanted, &out, &run.image, None)?;
+    note(&done_line(&name, &out, &wanted, None));
+    Ok(run.ev)
 }
 
 /// The part of an evaluation case's `case.json` that says how to run it; other keys of

@@ -2,13 +2,14 @@
 //! to folder…" share — which files are images, how one image is segmented and written,
 //! and the rows of `summary.csv` (one per object, with its mean intensity).
 
-use super::{load_image_page, OutputFiles, Outputs};
-use crate::evolution::{find_seeds, regions, Evolver, Field, Params, Shape};
+use super::{Format, OutputFiles, Outputs};
+use crate::evolution::{regions, Field};
+use crate::job::Job;
 use std::path::{Path, PathBuf};
 
 /// The header of `summary.csv`.
 pub const SUMMARY_HEADER: &str =
-    "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,mean_intensity\n";
+    "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,mean_intensity,contour\n";
 
 /// The images of `dir` (regular files ending in .png, .jpg, .jpeg, .tif or .tiff; not
 /// its subfolders), in name order.
@@ -61,29 +62,28 @@ pub fn summary_rows(name: &str, out: &Outputs, image: &Field) -> Vec<String> {
         .map(|(k, r)| {
             let mean = sum[k + 1] / count[k + 1].max(1) as f64;
             format!(
-                "{quoted},{},{:.3},{:.3},{:.4},{:.3},{:.3},{},{:.5}\n",
-                r.id,
+                "{quoted},{},{:.3},{:.3},{:.4},{:.3},{:.3},{},{:.5},{}\n",
+                super::export::object_number(k),
                 r.area,
                 r.perimeter,
                 r.circularity,
                 r.centroid.x,
                 r.centroid.y,
                 r.holes.len(),
-                mean
+                mean,
+                r.id
             )
         })
         .collect()
 }
 
-/// How every image of a folder is segmented (the app's "Apply to folder…").
+/// How every image of a folder is segmented (the app's "Apply to folder…"): one [`Job`]
+/// as a template, pointed at each image in turn. With `job.auto_seeds` each image gets
+/// the seeds found in it, never another image's.
 #[derive(Clone, Debug)]
 pub struct FolderJob {
-    /// The shapes every image starts from (clipped to each image).
-    pub shapes: Vec<Shape>,
-    /// Add one seed per object found in each image (used alone when `shapes` is empty).
-    pub auto_seeds: bool,
-    /// The parameters.
-    pub params: Params,
+    /// The template; its image is replaced by each image of the folder.
+    pub job: Job,
     /// Where `NAME.json`, `NAME.csv` and `summary.csv` go.
     pub out: PathBuf,
 }
@@ -93,27 +93,15 @@ impl FolderJob {
     /// summary rows, or the reason it failed in one line.
     pub fn run_one(&self, img: &Path) -> Result<Vec<String>, String> {
         let stem = stem(img);
-        let json = self.out.join(format!("{stem}.json"));
-        let csv = self.out.join(format!("{stem}.csv"));
+        let json = self.out.join(Format::Json.file_name(&stem));
+        let csv = self.out.join(Format::Csv.file_name(&stem));
         let files = OutputFiles::prepare(Some(img), &[&json, &csv]).map_err(|e| e.to_string())?;
-        let (image, info) = load_image_page(img, 0).map_err(|e| e.to_string())?;
-        let mut shapes = self.shapes.clone();
-        if self.auto_seeds || shapes.is_empty() {
-            shapes.extend(find_seeds(
-                &image,
-                self.params.polarity,
-                self.params.modality,
-            ));
-        }
-        let mut ev =
-            Evolver::new(&image, &shapes, self.params.clone()).map_err(|e| e.to_string())?;
-        ev.run();
-        ev.filter_clutter();
+        let run = self.job.with_image(img).run().map_err(|e| e.to_string())?;
         let name = file_name(img);
-        let out = Outputs::of(&ev, ev.contours(), &name).with_pixel_size(info.pixel_size);
+        let out = Outputs::of(&run.ev, run.ev.contours(), &name).with_pixel_size(run.pixel.clone());
         files
             .commit(vec![out.json().into_bytes(), out.csv().into_bytes()])
             .map_err(|e| e.to_string())?;
-        Ok(summary_rows(&stem, &out, &image))
+        Ok(summary_rows(&stem, &out, &run.image))
     }
 }

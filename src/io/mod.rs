@@ -9,6 +9,6 @@ pub mod session;
 pub mod tiff_info;
 
 pub use atomic::{write_atomic, OutputError, OutputFiles};
-pub use export::Outputs;
+pub use export::{ExportError, Format, Outputs};
 pub use load::{decode_image, load_image, load_image_page, ImageInfo, LoadError};
 pub use tiff_info::PixelSize;

@@ -25,7 +25,7 @@ pub fn roi_zip(set: &ContourSet) -> Vec<u8> {
     let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
     let options =
         zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
-    for r in regions(set) {
+    for (k, r) in regions(set).iter().enumerate() {
         let rings: Vec<Vec<Point>> = std::iter::once(r.id)
             .chain(r.holes.iter().copied())
             .map(|id: ContourId| set.ring_points(id))
@@ -35,7 +35,8 @@ pub fn roi_zip(set: &ContourSet) -> Vec<u8> {
         } else {
             shape_roi(&rings)
         };
-        zip.start_file(format!("object-{:05}.roi", r.id.0), options)
+        let number = crate::io::export::object_number(k);
+        zip.start_file(format!("object-{number:05}.roi"), options)
             .expect("zip entry in memory");
         zip.write_all(&bytes).expect("zip write in memory");
     }

@@ -2,14 +2,26 @@
 //! the image (path, size and CRC-32 of its bytes, so a changed image is refused), the
 //! shapes the evolution started from (automatic seeds as the seeds they became), the
 //! parameters, the user's edits on the way (force changes, hand drags, deletions, each
-//! at its frame), and how far it ran. JSON, versioned; a relative image path is relative to
-//! the session file's folder, so a folder of images and sessions can move as a whole.
+//! at its frame), and how far it ran: a [`Job`] plus a checked reference to its image.
+//!
+//! The image path is stored relative to the session file's folder (`../images/a.tif`), so a
+//! folder of images and sessions can move as a whole; it is absolute only when the two
+//! share no folder but the root (another drive, or `/tmp` against `/home/…`), where a
+//! relative path would climb to the root and break on any move. `replay --image PATH`
+//! points at a moved image; the size and checksum still refuse a changed one.
+//!
+//! JSON, versioned. Version 1 is still the only one: earlier builds wrote the same fields
+//! with an absolute path, which reads as before, and they read relative paths the same
+//! way, so no file needs converting. Unknown keys are refused (a typo is an error, not a
+//! silent default).
 //!
 //! The engine is deterministic: the same image, shapes and parameters give the same
 //! contours frame by frame, so a replay equals the run that saved the session (the
 //! JSON output is byte-identical; tests/cli.rs checks it).
 
-use crate::evolution::{Edit, EvolveError, Evolver, Field, Params, Shape};
+use crate::evolution::{Edit, EvolveError, Field, Params, Shape};
+use crate::io::PixelSize;
+use crate::job::{Job, JobError, JobRun, Stop};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -20,6 +32,7 @@ pub const VERSION: u32 = 1;
 
 /// The image a session was made on.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct ImageRef {
     /// As given when the session was saved (relative: to the session file's folder).
     pub path: PathBuf,
@@ -33,6 +46,7 @@ pub struct ImageRef {
 
 /// A saved segmentation.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Session {
     /// Always [`FORMAT`].
     pub format: String,
@@ -55,6 +69,9 @@ pub struct Session {
     /// The page of a multi-page TIFF the run segmented (0-based).
     #[serde(default)]
     pub page: usize,
+    /// The pixel size the run was given (none: the file's, if it records one).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pixel_size: Option<PixelSize>,
 }
 
 /// Why a session cannot be used.
@@ -72,6 +89,9 @@ pub enum SessionError {
     /// The evolution refused the saved shapes or parameters.
     #[error("the session cannot start: {0}")]
     Evolve(#[from] EvolveError),
+    /// A session stores its image path as text (JSON).
+    #[error("cannot save a session of {}: its path is not valid UTF-8", .0.display())]
+    PathNotUtf8(PathBuf),
 }
 
 /// CRC-32 of a file's bytes.
@@ -79,8 +99,28 @@ pub fn file_crc32(path: &Path) -> std::io::Result<u32> {
     Ok(crc32fast::hash(&std::fs::read(path)?))
 }
 
+/// `target` relative to the folder `base` (both absolute), or `None` when they share no
+/// folder but the root (or the drive differs): a relative path would climb to the root.
+fn relative_to(base: &Path, target: &Path) -> Option<PathBuf> {
+    use std::path::Component;
+    let b: Vec<Component> = base.components().collect();
+    let t: Vec<Component> = target.components().collect();
+    let common = b.iter().zip(&t).take_while(|(x, y)| x == y).count();
+    let root = b
+        .iter()
+        .take_while(|c| matches!(c, Component::Prefix(_) | Component::RootDir))
+        .count();
+    if common <= root {
+        return None;
+    }
+    let mut rel: PathBuf = b[common..].iter().map(|_| Component::ParentDir).collect();
+    rel.extend(&t[common..]);
+    Some(rel)
+}
+
 impl Session {
-    /// A session of a run from `shapes` with `params` on the image at `path`.
+    /// A session of a run from `shapes` with `params` on the image at `path` (stored as
+    /// given; [`Session::stored_at`] makes it relative to the session file).
     pub fn new(
         path: &Path,
         image: &Field,
@@ -104,6 +144,27 @@ impl Session {
             finished,
             edits: Vec::new(),
             page: 0,
+            pixel_size: None,
+        })
+    }
+
+    /// The session of `job`'s run: the shapes it started from (automatic seeds as the
+    /// seeds they became), its first parameters, its edits, where it stopped.
+    pub fn of_run(job: &Job, run: &JobRun) -> std::io::Result<Self> {
+        let ev = &run.ev;
+        let s = Session::new(
+            &job.image,
+            &run.image,
+            run.shapes.clone(),
+            ev.start_params().clone(),
+            ev.frames(),
+            job.stop == Stop::Finished,
+        )?;
+        Ok(Session {
+            edits: ev.edits().to_vec(),
+            page: run.page,
+            pixel_size: job.pixel_size.clone(),
+            ..s
         })
     }
 
@@ -119,9 +180,26 @@ impl Session {
         self
     }
 
-    /// The session as pretty JSON.
-    pub fn to_json(&self) -> String {
-        serde_json::to_string_pretty(self).expect("JSON of plain data")
+    /// The session as it is written to `session_path`: the image path relative to the
+    /// session file's folder, or absolute where a relative one would climb to the root
+    /// (see the module docs). A path that cannot be resolved stays as it is.
+    pub fn stored_at(mut self, session_path: &Path) -> Self {
+        let folder = match session_path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+        if let (Ok(base), Ok(image)) = (folder.canonicalize(), self.image.path.canonicalize()) {
+            self.image.path = relative_to(&base, &image).unwrap_or(image);
+        }
+        self
+    }
+
+    /// The session as pretty JSON (refused when the image path is not UTF-8).
+    pub fn to_json(&self) -> Result<String, SessionError> {
+        if self.image.path.to_str().is_none() {
+            return Err(SessionError::PathNotUtf8(self.image.path.clone()));
+        }
+        Ok(serde_json::to_string_pretty(self).expect("JSON of plain data with UTF-8 paths"))
     }
 
     /// Reads a session file.
@@ -154,34 +232,46 @@ impl Session {
         }
     }
 
-    /// Loads the image (checking it is the session's) and runs the evolution as far as
-    /// the session did; returns the evolver and the image.
-    pub fn replay(&self, session_path: &Path) -> Result<(Evolver, Field), SessionError> {
-        let path = self.image_path(session_path);
-        let (image, _) = crate::io::load_image_page(&path, self.page)
-            .map_err(|e| SessionError::Image(path.clone(), e.to_string()))?;
-        let crc =
-            file_crc32(&path).map_err(|e| SessionError::Image(path.clone(), e.to_string()))?;
+    /// The job this session records, on the image at `image` (a moved image) or, with
+    /// `None`, where the session says it is.
+    pub fn job(&self, session_path: &Path, image: Option<&Path>) -> Job {
+        Job {
+            image: image.map_or_else(|| self.image_path(session_path), Path::to_path_buf),
+            page: self.page,
+            shapes: self.shapes.clone(),
+            auto_seeds: false,
+            params: self.params.clone(),
+            edits: self.edits.clone(),
+            stop: if self.finished {
+                Stop::Finished
+            } else {
+                Stop::AtFrame(self.frames)
+            },
+            pixel_size: self.pixel_size.clone(),
+        }
+    }
+
+    /// Loads the image (checking it is the session's) and runs the session's job as far
+    /// as the session did.
+    pub fn replay(
+        &self,
+        session_path: &Path,
+        image: Option<&Path>,
+    ) -> Result<JobRun, SessionError> {
+        let job = self.job(session_path, image);
+        let path = job.image.clone();
+        let unreadable = |e: String| SessionError::Image(path.clone(), e);
+        let (field, info) = job.load().map_err(|e| unreadable(e.to_string()))?;
+        let crc = file_crc32(&path).map_err(|e| unreadable(e.to_string()))?;
         if crc != self.image.crc32
-            || image.width != self.image.width
-            || image.height != self.image.height
+            || field.width != self.image.width
+            || field.height != self.image.height
         {
             return Err(SessionError::Changed(path));
         }
-        let mut ev = Evolver::new(&image, &self.shapes, self.params.clone())?;
-        for edit in &self.edits {
-            while ev.frames() < edit.frame() && !ev.is_finished() {
-                ev.step();
-            }
-            ev.redo_edit(edit)?;
-        }
-        if self.finished {
-            ev.run();
-        } else {
-            while ev.frames() < self.frames && !ev.is_finished() {
-                ev.step();
-            }
-        }
-        Ok((ev, image))
+        job.run_on(field, info).map_err(|e| match e {
+            JobError::Evolve(e) => SessionError::Evolve(e),
+            other => SessionError::Image(path.clone(), other.to_string()),
+        })
     }
 }

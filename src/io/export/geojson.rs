@@ -1,6 +1,6 @@
 //! GeoJSON as QuPath reads it.
 
-use super::{Outputs, PALETTE};
+use super::{object_number, Outputs, PALETTE};
 use crate::contours::ContourId;
 use crate::evolution::regions;
 use serde_json::json;
@@ -9,7 +9,8 @@ impl Outputs<'_> {
     /// GeoJSON FeatureCollection of Polygons (outer ring, then holes; closed rings in
     /// pixel coordinates), as QuPath reads them: `objectType`, a `classification` with
     /// name and colour, and the measurements in `properties.measurements` (QuPath
-    /// ignores other properties).
+    /// ignores other properties). `id` is the object's number
+    /// ([`super::object_number`]), `contour` its outer ring's id in the JSON.
     pub fn geojson(&self) -> String {
         let ring = |id: ContourId| {
             let mut pts: Vec<[f64; 2]> = self
@@ -23,7 +24,8 @@ impl Outputs<'_> {
         };
         let features: Vec<_> = regions(self.set)
             .iter()
-            .map(|r| {
+            .enumerate()
+            .map(|(k, r)| {
                 let coords: Vec<_> = std::iter::once(r.id)
                     .chain(r.holes.iter().copied())
                     .map(ring)
@@ -32,8 +34,9 @@ impl Outputs<'_> {
                     "type": "Feature",
                     "geometry": {"type": "Polygon", "coordinates": coords},
                     "properties": {
-                        "id": r.id,
-                        "name": format!("object {}", r.id),
+                        "id": object_number(k),
+                        "name": format!("object {}", object_number(k)),
+                        "contour": r.id,
                         "objectType": "annotation",
                         "classification": {"name": "Object", "color": PALETTE[0]},
                         "measurements": {

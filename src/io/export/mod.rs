@@ -1,12 +1,15 @@
 //! Exports of a segmentation, as bytes in memory ([`super::atomic`] writes them): one
 //! file per format — `json.rs` (the CLI contract), `raster.rs` (mask, label image,
-//! overlay), `svg.rs`, `geojson.rs` (QuPath), `csv.rs` — over one bundle, [`Outputs`].
+//! overlay), `svg.rs`, `geojson.rs` (QuPath), `csv.rs` — over one bundle, [`Outputs`]; [`Format`] names them.
 
 mod csv;
+mod format;
 mod geojson;
 mod json;
 mod raster;
 mod svg;
+
+pub use format::{ExportError, Format};
 
 use crate::contours::ContourSet;
 use crate::evolution::{Evolver, FrameEvent};
@@ -71,6 +74,16 @@ pub(crate) fn fmt(v: f64) -> String {
     } else {
         s.into()
     }
+}
+
+/// The number every export gives the `k`-th region of [`crate::evolution::regions`]
+/// (0-based): 1, 2, 3, … It is the value of the region's pixels in the label image, the
+/// `id` of its CSV row and GeoJSON feature and the name of its ROI, so a table measured
+/// on the labels (Fiji, QuPath) joins the CSV by id. The JSON lists rings by contour id
+/// (holes too, and ids are not consecutive after merges): the CSV's `contour` column
+/// and GeoJSON's `contour` property give that id.
+pub fn object_number(k: usize) -> u32 {
+    k as u32 + 1
 }
 
 /// `text` as one CSV field: in double quotes, inner quotes doubled.

@@ -1,7 +1,7 @@
 //! Raster exports: the binary mask, the label image (16-bit PNG or TIFF), the overlay
 //! of the contours on the image — all by one even-odd scanline fill of the rings.
 
-use super::{Outputs, PALETTE};
+use super::{object_number, Outputs, PALETTE};
 use crate::evolution::regions;
 use crate::geometry::{fill_even_odd, Point};
 
@@ -19,8 +19,8 @@ impl Outputs<'_> {
         mask
     }
 
-    /// One label per region (outer ring less its holes), 1, 2, … in the order of
-    /// [`regions`]; 0 outside.
+    /// One label per region (outer ring less its holes): its [`object_number`], 1, 2, …
+    /// in the order of [`regions`]; 0 outside.
     pub fn labels(&self) -> Vec<u32> {
         let mut labels = vec![0u32; self.width * self.height];
         for (k, r) in regions(self.set).iter().enumerate() {
@@ -28,9 +28,8 @@ impl Outputs<'_> {
                 .chain(r.holes.iter().copied())
                 .map(|id| self.set.ring_points(id))
                 .collect();
-            fill_even_odd(&rings, self.width, self.height, |i| {
-                labels[i] = k as u32 + 1
-            });
+            let label = object_number(k);
+            fill_even_odd(&rings, self.width, self.height, |i| labels[i] = label);
         }
         labels
     }
@@ -81,7 +80,7 @@ impl Outputs<'_> {
             }
         }
         for (k, r) in regions(self.set).iter().enumerate() {
-            let c = colour(k as u32 + 1);
+            let c = colour(object_number(k));
             for id in std::iter::once(r.id).chain(r.holes.iter().copied()) {
                 let pts = self.set.ring_points(id);
                 for i in 0..pts.len() {
