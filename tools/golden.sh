@@ -8,6 +8,7 @@ set -euo pipefail
 bin=$(realpath "$1"); shift
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 for cases in "$@"; do
+  ls "$cases"/*/case.json >/dev/null 2>&1 || { echo "no cases in $cases" >&2; exit 2; }
   for d in "$cases"/*/; do
     [ -f "$d/case.json" ] || continue
     name=$(basename "$d")

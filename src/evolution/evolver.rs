@@ -266,7 +266,7 @@ impl Evolver {
     /// [`Engine::brush`]); the events are logged at the current frame.
     /// Not in `Mode::Implicit` (no event).
     pub fn brush(&mut self, from: Point, to: Point, radius: f64) -> Vec<TopologyEvent> {
-        if !(radius.is_finite() && radius > 0.0 && from.is_finite() && to.is_finite()) {
+        if check_brush(radius, from, to, self.diagonal()).is_err() {
             return Vec::new();
         }
         self.edits.push(Edit::Brush {
@@ -321,21 +321,35 @@ impl Evolver {
         &self.edits
     }
 
-    /// Makes `edit` again (a session's replay): the caller has stepped to its frame.
+    /// Makes `edit` again (a session's replay): the caller has stepped to its frame. An
+    /// edit no user could have made (a brush wider than the image's diagonal, a point
+    /// that is not finite) is refused.
     pub fn redo_edit(&mut self, edit: &Edit) -> Result<(), EvolveError> {
         match *edit {
             Edit::Forces { weights, step, .. } => self.set_forces(weights, step)?,
             Edit::Drag { vertex, to, .. } => {
+                if !to.is_finite() {
+                    return Err(EvolveError::BadShape(format!(
+                        "a drag to {to:?} is not a finite point"
+                    )));
+                }
                 self.hand_drag(vertex, to);
             }
             Edit::Brush {
                 from, to, radius, ..
             } => {
+                check_brush(radius, from, to, self.diagonal())?;
                 self.brush(from, to, radius);
             }
             Edit::Delete { contour, .. } => self.delete_contour(ContourId(contour)),
         }
         Ok(())
+    }
+
+    /// The image's diagonal, pixels: the largest length any edit needs.
+    fn diagonal(&self) -> f64 {
+        let (w, h) = self.size();
+        (w as f64).hypot(h as f64)
     }
 
     fn log_events(&mut self, events: &[TopologyEvent]) {
@@ -357,6 +371,23 @@ impl Evolver {
         crate::contours::measure::drop_small(&mut set, min_area);
         set
     }
+}
+
+/// A brush of radius in (0, the image's diagonal] between finite points.
+fn check_brush(radius: f64, from: Point, to: Point, diagonal: f64) -> Result<(), EvolveError> {
+    if !(radius > 0.0 && radius <= diagonal) {
+        return Err(EvolveError::BadParameter {
+            name: "brush radius",
+            what: "in (0, the image's diagonal]",
+            value: radius,
+        });
+    }
+    if !(from.is_finite() && to.is_finite()) {
+        return Err(EvolveError::BadShape(format!(
+            "a brush stroke from {from:?} to {to:?} has a point that is not finite"
+        )));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

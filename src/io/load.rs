@@ -82,8 +82,7 @@ pub const MAX_FILE_BYTES: u64 = MAX_PIXELS * 8 + (1 << 20);
 
 /// Reads an image file as luminance (the first page of a multi-page TIFF).
 pub fn load_image(path: &Path) -> Result<Field, LoadError> {
-    let bytes = read_file(path)?;
-    decode_image(&bytes, &path.display().to_string())
+    load_image_page(path, 0).map(|(field, _)| field)
 }
 
 /// What a file says about its image besides the pixels.
@@ -101,8 +100,16 @@ pub fn load_image_page(path: &Path, page: usize) -> Result<(Field, ImageInfo), L
     let bytes = read_file(path)?;
     let name = path.display().to_string();
     let (pages, pixel_size) = super::tiff_info::tiff_info(&bytes).unwrap_or((1, None));
+    let tiff = bytes.starts_with(b"II") || bytes.starts_with(b"MM");
     let field = if page == 0 {
-        decode_image(&bytes, &name)?
+        match decode_image(&bytes, &name) {
+            // The image crate reads no floating-point TIFF: such a first page is decoded
+            // as the pages after it are.
+            Err(e @ LoadError::Decode { .. }) if tiff => {
+                super::tiff_info::decode_page(&bytes, &name, 0).map_err(|_| e)?
+            }
+            other => other?,
+        }
     } else if page < pages {
         super::tiff_info::decode_page(&bytes, &name, page)?
     } else {

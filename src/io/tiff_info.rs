@@ -5,13 +5,20 @@
 //! Pixel size: ImageJ writes XResolution as pixels per unit and the unit in the
 //! ImageDescription (`unit=micron`); other writers use ResolutionUnit (inch or cm). A
 //! resolution without a unit means nothing physical and is ignored.
+//!
+//! Pages are counted by following the chain of image directories alone: loading each
+//! page's strip table as well made a file of 20,000 directories sharing one table of
+//! 60,000 strips cost 20 s before it was refused. Floating-point pages (32 or 64 bit)
+//! are scaled from their own finite range to [0, 1], whatever page they are; a NaN sample
+//! (no data) takes the mean of the finite ones, so it reads as neither object nor
+//! background, and ±∞ the range's ends: no non-finite value ever reaches the engine.
 
 use super::load::LoadError;
 use crate::evolution::Field;
 use std::io::Cursor;
 use tiff::decoder::ifd::Value;
 use tiff::decoder::{Decoder, DecodingResult, Limits};
-use tiff::tags::Tag;
+use tiff::tags::{IfdPointer, Tag};
 use tiff::ColorType;
 
 /// Pages read at most when counting (a malformed chain of images must not loop).
@@ -30,11 +37,52 @@ pub struct PixelSize {
 pub fn tiff_info(bytes: &[u8]) -> Option<(usize, Option<PixelSize>)> {
     let mut dec = Decoder::new(Cursor::new(bytes)).ok()?;
     let pixel = pixel_size(&mut dec);
-    let mut pages = 1;
-    while dec.more_images() && pages < MAX_PAGES && dec.next_image().is_ok() {
-        pages += 1;
+    Some((count_pages(&mut dec), pixel))
+}
+
+/// Directories in the chain from the first, read without their images' strip tables;
+/// the walk stops at a directory seen before (a cycle), an unreadable one or
+/// [`MAX_PAGES`].
+fn count_pages(dec: &mut Decoder<Cursor<&[u8]>>) -> usize {
+    let mut seen = std::collections::HashSet::new();
+    let mut at: Option<IfdPointer> = dec.ifd_pointer();
+    while let Some(ptr) = at {
+        if seen.len() >= MAX_PAGES || !seen.insert(ptr.0) {
+            break;
+        }
+        at = match dec.read_directory(ptr) {
+            Ok(dir) => dir.next(),
+            Err(_) => None,
+        };
     }
-    Some((pages, pixel))
+    seen.len().max(1)
+}
+
+/// Floating-point samples scaled from their finite range to [0, 1] (left as they are when
+/// already inside it); NaN becomes the finite samples' mean, ±∞ the high or low end.
+fn float_samples(v: impl Iterator<Item = f64> + Clone) -> Vec<f32> {
+    let (lo, hi, sum, n) = v.clone().filter(|x| x.is_finite()).fold(
+        (f64::INFINITY, f64::NEG_INFINITY, 0.0, 0usize),
+        |(lo, hi, sum, n), x| (lo.min(x), hi.max(x), sum + x, n + 1),
+    );
+    let (lo, hi, mean) = if n == 0 {
+        (0.0, 1.0, 0.5)
+    } else {
+        (lo, hi, sum / n as f64)
+    };
+    let (offset, scale) = if lo >= 0.0 && hi <= 1.0 {
+        (0.0, 1.0)
+    } else if hi > lo {
+        (lo, 1.0 / (hi - lo))
+    } else {
+        // One value everywhere: a flat image.
+        (lo, 0.0)
+    };
+    v.map(|x| {
+        let x = if x.is_nan() { mean } else { x.clamp(lo, hi) };
+        ((x - offset) * scale).clamp(0.0, 1.0) as f32
+    })
+    .collect()
 }
 
 fn pixel_size(dec: &mut Decoder<Cursor<&[u8]>>) -> Option<PixelSize> {
@@ -97,7 +145,8 @@ pub fn decode_page(bytes: &[u8], name: &str, page: usize) -> Result<Field, LoadE
     let values: Vec<f32> = match dec.read_image().map_err(|e| err(e.to_string()))? {
         DecodingResult::U8(v) => v.iter().map(|&x| x as f32 / 255.0).collect(),
         DecodingResult::U16(v) => v.iter().map(|&x| x as f32 / 65535.0).collect(),
-        DecodingResult::F32(v) => v.iter().map(|&x| x.clamp(0.0, 1.0)).collect(),
+        DecodingResult::F32(v) => float_samples(v.iter().map(|&x| x as f64)),
+        DecodingResult::F64(v) => float_samples(v.iter().copied()),
         _ => {
             return Err(err(format!(
                 "page {}: this sample format is not supported",

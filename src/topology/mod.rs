@@ -349,10 +349,12 @@ impl ContourSet {
             }
             let b = self.next[a as usize];
             let len = self.pos[a as usize].dist(self.pos[b as usize]);
-            if len <= self.max_edge {
+            // A non-finite length (never from a checked input) must not mean endless
+            // insertions: the loop is bounded whatever the coordinates.
+            if !(len > self.max_edge && len.is_finite()) {
                 continue;
             }
-            self.split_edge(a, (len / self.max_edge).ceil() as usize);
+            self.split_edge(a, (len / self.max_edge).ceil().min(MAX_SPLIT) as usize);
             // Should a split be refused (rounding next to other geometry), the broad phase
             // widens its reach so that correctness never rests on the bound.
             let mut w = a;
@@ -380,6 +382,10 @@ impl ContourSet {
         }
     }
 }
+
+/// Parts one edge is split into at most: far more than an edge inside any accepted image
+/// needs (its diagonal over the smallest edge bound).
+const MAX_SPLIT: f64 = (1u32 << 20) as f64;
 
 /// The event for ring `id` deleted by Directive 2 with M's winding `w` over it.
 fn deletion_event(id: u32, outer: bool, w: i32, survivor: Option<u32>) -> TopologyEvent {

@@ -153,6 +153,13 @@ impl<M: Motion> Explicit<M> {
     /// the topology core. Brushing from inside a region pushes its boundary out (it grows
     /// and may merge with another); from outside pushes it in (it shrinks, may split or
     /// open a hole). Returns the events.
+    ///
+    /// Where the brush lands, its disc grows from nothing to `radius` in the same steps:
+    /// every push is then at most a step long, an ordinary small motion region. Pushing
+    /// vertices a whole radius at once made long edges whose new vertices lay inside the
+    /// disc and were pushed again, a cascade that grew faster than any power of the
+    /// radius (40 px: 8 s, 60 px: over a minute). The stroke is clipped to the image
+    /// grown by the radius, beyond which it touches nothing.
     pub(super) fn brush_stroke(
         &mut self,
         from: Point,
@@ -161,32 +168,70 @@ impl<M: Motion> Explicit<M> {
         level: usize,
     ) -> Vec<TopologyEvent> {
         let mut events = Vec::new();
-        let (scale, d_min, d_max) = spacing(level);
+        let reach = self.bounds.expand(radius);
+        let Some((from, to)) = clip_segment(from, to, &reach) else {
+            return events;
+        };
         let step = 0.25 * self.set.max_edge();
-        let n = (from.dist(to) / step).ceil().max(1.0) as usize;
-        let mut near = Vec::new();
+        let grow = (radius / step).ceil().max(1.0) as usize;
+        for k in 1..=grow {
+            self.brush_disc(from, radius * k as f64 / grow as f64, level, &mut events);
+        }
+        let n = (from.dist(to) / step).ceil() as usize;
         for k in 1..=n {
             let c = from.lerp(to, k as f64 / n as f64);
-            self.set.vertices_near(
-                &crate::geometry::Aabb { min: c, max: c }.expand(radius),
-                &mut near,
-            );
-            for &v in &near {
-                if !self.set.is_alive(v) {
-                    continue;
-                }
-                let x = self.set.position(v);
-                let d = x.dist(c);
-                if d >= radius || d == 0.0 {
-                    continue;
-                }
-                let goal = self.bounds.clamp(c + (x - c) * (radius / d));
-                self.shortened(v, goal, scale, &mut events);
-            }
-            // Keep edges within bounds as the rim is traced, so the next step finds
-            // vertices all along it.
-            super::remesh(&mut self.set, d_min, d_max, M::gap(scale), &mut events);
+            self.brush_disc(c, radius, level, &mut events);
         }
         events
     }
+
+    /// One placement of the brush: the vertices inside the disc pushed to its rim, then
+    /// the rings remeshed so the next placement finds vertices all along the rim.
+    fn brush_disc(&mut self, c: Point, radius: f64, level: usize, events: &mut Vec<TopologyEvent>) {
+        let (scale, d_min, d_max) = spacing(level);
+        let mut near = Vec::new();
+        self.set.vertices_near(
+            &crate::geometry::Aabb { min: c, max: c }.expand(radius),
+            &mut near,
+        );
+        for &v in &near {
+            if !self.set.is_alive(v) {
+                continue;
+            }
+            let x = self.set.position(v);
+            let d = x.dist(c);
+            if d >= radius || d == 0.0 {
+                continue;
+            }
+            let goal = self.bounds.clamp(c + (x - c) * (radius / d));
+            self.shortened(v, goal, scale, events);
+        }
+        super::remesh(&mut self.set, d_min, d_max, M::gap(scale), events);
+    }
+}
+
+/// The part of segment `a`–`b` inside `bounds` (Liang–Barsky), if any.
+fn clip_segment(a: Point, b: Point, bounds: &crate::geometry::Aabb) -> Option<(Point, Point)> {
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-d.x, a.x - bounds.min.x),
+        (d.x, bounds.max.x - a.x),
+        (-d.y, a.y - bounds.min.y),
+        (d.y, bounds.max.y - a.y),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else {
+            let t = q / p;
+            if p < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+        }
+    }
+    (t0 <= t1).then(|| (a.lerp(b, t0), a.lerp(b, t1)))
 }

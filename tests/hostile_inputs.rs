@@ -1,0 +1,183 @@
+//! Inputs that once hung the engine or the loader (issue: no input may hang, crash or
+//! exhaust memory, second round): each must finish within a deadline with a result or a
+//! clear refusal.
+
+use std::sync::mpsc;
+use std::time::Duration;
+use topocontour::evolution::{Edit, Evolver, Field, Params, Shape};
+use topocontour::io::load_image_page;
+use topocontour::Point;
+
+/// Runs `f` on a thread and fails the test when it takes longer than `secs`.
+fn within<T: Send + 'static>(secs: u64, f: impl FnOnce() -> T + Send + 'static) -> T {
+    let (tx, rx) = mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = tx.send(f());
+    });
+    rx.recv_timeout(Duration::from_secs(secs))
+        .unwrap_or_else(|_| panic!("still running after {secs} s"))
+}
+
+fn tmp(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("topocontour-inputs-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d.join(name)
+}
+
+/// A 64² float image: a dark disc on a bright background, in arbitrary units.
+fn float_page(nan_column: Option<usize>) -> Vec<f32> {
+    (0..64 * 64)
+        .map(|i| {
+            let (x, y) = (i % 64, i / 64);
+            if Some(x) == nan_column {
+                return f32::NAN;
+            }
+            let inside = (x as f32 - 32.0).powi(2) + (y as f32 - 32.0).powi(2) < 200.0;
+            if inside {
+                1000.0
+            } else {
+                3000.0
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn float_tiff_pages_decode_alike_and_nan_never_reaches_the_engine() {
+    let path = tmp("float.tif");
+    {
+        let file = std::fs::File::create(&path).unwrap();
+        let mut enc = tiff::encoder::TiffEncoder::new(file).unwrap();
+        for nan in [None, Some(5)] {
+            enc.write_image::<tiff::encoder::colortype::Gray32Float>(64, 64, &float_page(nan))
+                .unwrap();
+        }
+    }
+    for page in 0..2 {
+        let p = path.clone();
+        let (image, info) = load_image_page(&p, page).unwrap();
+        assert_eq!(info.pages, 2);
+        assert!(image
+            .data
+            .iter()
+            .all(|v| v.is_finite() && (0.0..=1.0).contains(v)));
+        // Scaled from the page's own range: the disc is 0, the background 1.
+        assert_eq!(image.data[32 * 64 + 32], 0.0);
+        assert_eq!(image.data[2 * 64 + 60], 1.0);
+        let wrap = [Shape::Rect {
+            min: Point::new(2.0, 2.0),
+            max: Point::new(62.0, 62.0),
+        }];
+        let contours = within(20, move || {
+            let mut ev = Evolver::new(&image, &wrap, Params::default()).unwrap();
+            ev.run();
+            ev.filter_clutter();
+            ev.contours().contour_count()
+        });
+        // The NaN column reads as neither object nor background: one disc on each page.
+        assert_eq!(contours, 1, "page {page}");
+    }
+}
+
+/// A little-endian TIFF of `n` one-pixel-wide images whose directories all share one
+/// strip table of `strips` entries.
+fn many_directories(n: usize, strips: u32) -> Vec<u8> {
+    let mut out = b"II*\0\0\0\0\0".to_vec();
+    let data = out.len() as u32;
+    out.push(0x80);
+    let table = out.len() as u32;
+    out.extend((0..strips).flat_map(|_| data.to_le_bytes()));
+    let counts = out.len() as u32;
+    out.extend((0..strips).flat_map(|_| 1u32.to_le_bytes()));
+    let first = out.len() as u32;
+    out[4..8].copy_from_slice(&first.to_le_bytes());
+    let entries: [(u16, u16, u32, u32); 9] = [
+        (256, 3, 1, 1),
+        (257, 4, 1, strips),
+        (258, 3, 1, 8),
+        (259, 3, 1, 1),
+        (262, 3, 1, 1),
+        (273, 4, strips, table),
+        (277, 3, 1, 1),
+        (278, 3, 1, 1),
+        (279, 4, strips, counts),
+    ];
+    for i in 0..n {
+        out.extend((entries.len() as u16).to_le_bytes());
+        for (tag, kind, count, value) in entries {
+            out.extend(tag.to_le_bytes());
+            out.extend(kind.to_le_bytes());
+            out.extend(count.to_le_bytes());
+            out.extend(value.to_le_bytes());
+        }
+        let next = if i + 1 < n { out.len() as u32 + 4 } else { 0 };
+        out.extend(next.to_le_bytes());
+    }
+    out
+}
+
+#[test]
+fn thousands_of_directories_sharing_a_strip_table_are_counted_quickly() {
+    // Counting pages by loading every strip table took 20 s for 20,000 directories of
+    // 60,000 strips; the directories alone take milliseconds.
+    let path = tmp("directories.tif");
+    std::fs::write(&path, many_directories(20_000, 200_000)).unwrap();
+    let info = within(10, move || load_image_page(&path, 0).map(|(_, info)| info));
+    assert_eq!(info.unwrap().pages, 20_000);
+}
+
+fn two_disks() -> Evolver {
+    let image = Field::new(256, 192, vec![0.5; 256 * 192]);
+    let disk = |x: f64| Shape::Disk {
+        center: Point::new(x, 96.0),
+        radius: 30.0,
+    };
+    Evolver::new(&image, &[disk(70.0), disk(180.0)], Params::default()).unwrap()
+}
+
+#[test]
+fn a_wide_brush_costs_about_what_a_narrow_one_does() {
+    // Pushing vertices a whole radius at once cascaded: 40 px took 8 s, 60 px minutes.
+    let events = within(20, || {
+        let mut ev = two_disks();
+        let events = ev.brush(Point::new(70.0, 96.0), Point::new(120.0, 96.0), 80.0);
+        ev.contours().sanity_check().unwrap();
+        events
+    });
+    assert!(
+        !events.is_empty(),
+        "the brush from inside merges the two disks"
+    );
+}
+
+#[test]
+fn a_brush_stroke_from_far_outside_is_clipped_to_the_image() {
+    let count = within(20, || {
+        let mut ev = two_disks();
+        ev.brush(Point::new(-1e9, 96.0), Point::new(1e9, 96.0), 6.0);
+        ev.contours().sanity_check().unwrap();
+        ev.contours().contour_count()
+    });
+    // A stroke from outside across both disks cuts each in two.
+    assert_eq!(count, 4);
+}
+
+#[test]
+fn a_session_brush_no_user_could_make_is_refused() {
+    let mut ev = two_disks();
+    for radius in [1e9, f64::NAN, -1.0] {
+        let edit = Edit::Brush {
+            frame: 0,
+            from: Point::new(10.0, 10.0),
+            to: Point::new(20.0, 20.0),
+            radius,
+        };
+        assert!(ev.redo_edit(&edit).is_err(), "radius {radius}");
+    }
+    let drag = Edit::Drag {
+        frame: 0,
+        vertex: 0,
+        to: Point::new(f64::INFINITY, 0.0),
+    };
+    assert!(ev.redo_edit(&drag).is_err());
+}
