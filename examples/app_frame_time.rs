@@ -56,21 +56,24 @@ fn main() {
     );
     // Play at one evolution frame per UI frame: each harness step is then exactly one
     // frame step plus drawing (outlines; filling waits for a pause at this size).
-    harness.state_mut().settings.speed = 1.0;
-    harness.state_mut().playing = true;
+    harness.state_mut().view.prefs.speed = 1.0;
+    harness.state_mut().view.playing = true;
     let mut frame_ms = Vec::new();
     let mut parts = Vec::new();
     let mut sizes = Vec::new();
     for _ in 0..30 {
-        let before = harness.state().shown;
+        let before = harness.state().doc.shown;
         let t = Instant::now();
         harness.step();
         let ms = t.elapsed().as_secs_f64() * 1e3;
-        if harness.state().shown != before + 1 {
+        if harness.state().doc.shown != before + 1 {
             break; // converged: nothing was stepped
         }
         frame_ms.push(ms);
-        parts.push((harness.state().step_ms, harness.state().draw_ms));
+        parts.push((
+            harness.state().status.step_ms,
+            harness.state().status.draw_ms,
+        ));
         sizes.push(harness.state().shown_record().unwrap().vertices);
     }
     assert!(frame_ms.len() >= 3, "measured while evolving");
@@ -91,7 +94,7 @@ fn main() {
         parts[parts.len() / 2].1
     );
     // Paused: the regions get filled (spade triangulation), once per frame shown.
-    harness.state_mut().playing = false;
+    harness.state_mut().view.playing = false;
     let t = Instant::now();
     harness.step();
     println!(

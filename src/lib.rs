@@ -39,6 +39,7 @@ pub mod io;
 pub mod job;
 pub mod shape;
 pub mod topology;
+pub mod track;
 
 pub use contours::{ContourId, ContourSet, RingError, VertexId};
 pub use geometry::{Aabb, Point};

@@ -2,7 +2,7 @@
 
 use clap::Parser;
 use std::io::Write;
-use topocontour::cli::{batch, bench, note, replay, segment, Cli, Command, Failure};
+use topocontour::cli::{batch, bench, note, replay, segment, track, Cli, Command, Failure};
 
 #[cfg(feature = "gui")]
 fn open_app(image: Option<std::path::PathBuf>) -> Result<(), Failure> {
@@ -84,6 +84,7 @@ fn main() {
         Some(Command::Replay(r)) => replay(r).map(std::mem::forget),
         Some(Command::Batch(b)) => batch(b),
         Some(Command::Bench(b)) => bench(b),
+        Some(Command::Track(t)) => track(t),
         None => open_app(cli.image.clone()),
     };
     if let Err(f) = result {

@@ -4,7 +4,7 @@
 
 use egui_kittest::kittest::Queryable;
 use egui_kittest::Harness;
-use topocontour::app::{Command, ExportKind, Tool, TopoApp};
+use topocontour::app::{Command, Format, Tool, TopoApp};
 use topocontour::evolution::Shape;
 
 fn harness(app: TopoApp) -> Harness<'static, TopoApp> {
@@ -44,8 +44,8 @@ fn click_at(h: &mut Harness<'_, TopoApp>, pos: egui::Pos2) {
 fn starts_with_the_sample_and_a_wrap_rectangle() {
     let mut h = harness(TopoApp::with_sample());
     h.step();
-    assert!(h.state().image.is_some());
-    assert!(matches!(h.state().shapes[..], [Shape::Rect { .. }]));
+    assert!(h.state().doc.image.is_some());
+    assert!(matches!(h.state().doc.shapes[..], [Shape::Rect { .. }]));
     h.get_by_label("Canvas");
 }
 
@@ -55,22 +55,28 @@ fn clicking_on_the_canvas_adds_a_seed() {
     h.step();
     h.get_by_label("Seed").click();
     h.step();
-    assert_eq!(h.state().settings.tool, Tool::Seed);
+    assert_eq!(h.state().view.prefs.tool, Tool::Seed);
     let canvas = h.get_by_label("Canvas").rect();
     click_at(&mut h, canvas.center());
     // The sample's wrap rectangle makes way for the first seed (it would swallow it).
-    let shapes = &h.state().shapes;
+    let shapes = &h.state().doc.shapes;
     assert_eq!(shapes.len(), 1, "{shapes:?}");
     assert!(matches!(shapes[0], Shape::Disk { radius, .. } if radius == 5.0));
-    assert!(h.state().notice.as_deref().unwrap().contains("made way"));
+    assert!(h
+        .state()
+        .status
+        .notice
+        .as_deref()
+        .unwrap()
+        .contains("made way"));
     click_at(&mut h, canvas.center() + egui::vec2(40.0, 0.0));
-    assert_eq!(h.state().shapes.len(), 2, "later seeds add up");
+    assert_eq!(h.state().doc.shapes.len(), 2, "later seeds add up");
     h.state_mut().send(Command::Undo);
     h.step();
     h.state_mut().send(Command::Undo);
     h.step();
     assert!(
-        matches!(h.state().shapes[..], [Shape::Rect { .. }]),
+        matches!(h.state().doc.shapes[..], [Shape::Rect { .. }]),
         "Undo brings the wrap back"
     );
 }
@@ -81,26 +87,26 @@ fn step_advances_exactly_one_frame_and_play_pause_toggle() {
     h.step();
     h.get_by_label("Step").click();
     h.step();
-    assert_eq!(h.state().run.as_ref().unwrap().head(), 1);
-    assert_eq!(h.state().shown, 1);
+    assert_eq!(h.state().doc.run.as_ref().unwrap().head(), 1);
+    assert_eq!(h.state().doc.shown, 1);
     h.get_by_label("Step").click();
     h.step();
-    assert_eq!(h.state().shown, 2);
+    assert_eq!(h.state().doc.shown, 2);
     h.get_by_label("Play").click();
     h.step();
-    assert!(h.state().playing);
+    assert!(h.state().view.playing);
     for _ in 0..5 {
         h.step();
     }
-    let after_play = h.state().shown;
+    let after_play = h.state().doc.shown;
     assert!(after_play > 2, "playing advances frames");
     h.get_by_label("Pause").click();
     h.step();
-    assert!(!h.state().playing);
-    let paused = h.state().shown;
+    assert!(!h.state().view.playing);
+    let paused = h.state().doc.shown;
     h.step();
     h.step();
-    assert_eq!(h.state().shown, paused, "paused stays put");
+    assert_eq!(h.state().doc.shown, paused, "paused stays put");
 }
 
 #[test]
@@ -120,7 +126,8 @@ fn a_split_appears_in_the_event_log_and_clicking_it_shows_that_frame() {
     }
     let (frame, event) = *h
         .state()
-        .log
+        .doc
+        .events()
         .iter()
         .find(|(_, e)| e.kind() == "split")
         .expect("a split was logged");
@@ -130,7 +137,7 @@ fn a_split_appears_in_the_event_log_and_clicking_it_shows_that_frame() {
     h.step(); // draw the log as it is after the last step
     h.get_by_label(&text).click();
     h.step();
-    assert_eq!(h.state().shown, frame);
+    assert_eq!(h.state().doc.shown, frame);
     assert!(h
         .state()
         .shown_record()
@@ -150,18 +157,22 @@ fn export_writes_an_svg_that_parses_and_reset_clears() {
     }
     let path = temp("app.svg");
     h.state_mut()
-        .send(Command::Export(ExportKind::Svg, path.clone()));
+        .send(Command::Export(Format::Svg, path.clone()));
     h.step();
     let svg = std::fs::read_to_string(&path).expect("export wrote the file");
     let tree =
         resvg::usvg::Tree::from_str(&svg, &resvg::usvg::Options::default()).expect("SVG parses");
     assert!(tree.root().children().len() >= 5, "one path per region");
-    assert!(h.state().error.is_none());
+    assert!(h.state().status.error.is_none());
     h.get_by_label("Reset").click();
     h.step();
-    assert!(h.state().run.is_none());
-    assert!(h.state().log.is_empty());
-    assert_eq!(h.state().shapes.len(), 1, "reset keeps the initialisation");
+    assert!(h.state().doc.run.is_none());
+    assert!(h.state().doc.events().is_empty());
+    assert_eq!(
+        h.state().doc.shapes.len(),
+        1,
+        "reset keeps the initialisation"
+    );
 }
 
 #[test]
@@ -170,7 +181,7 @@ fn errors_show_in_the_app_instead_of_panicking() {
     h.state_mut()
         .send(Command::OpenImage("/nonexistent/image.png".into()));
     h.step();
-    let error = |h: &Harness<TopoApp>| h.state().error.as_ref().unwrap().to_string();
+    let error = |h: &Harness<TopoApp>| h.state().status.error.as_ref().unwrap().to_string();
     assert!(error(&h).contains("cannot read"));
     h.state_mut().send(Command::DeleteShape(0));
     h.step();
@@ -190,10 +201,10 @@ fn select_and_delete_a_shape_from_the_canvas() {
         .state()
         .screen_from_image(topocontour::Point::new(6.0, 150.0));
     click_at(&mut h, on_edge);
-    assert_eq!(h.state().selected, Some(0));
+    assert_eq!(h.state().view.selected, Some(0));
     h.get_by_label("Delete shape").click();
     h.step();
-    assert!(h.state().shapes.is_empty());
+    assert!(h.state().doc.shapes.is_empty());
 }
 
 #[test]
@@ -217,7 +228,7 @@ fn the_engine_choice_keeps_two_touching_seeds_apart() {
     h.get_by_label("Preserve").click();
     h.step();
     assert_eq!(
-        h.state().settings.mode,
+        h.state().doc.settings.params.mode,
         topocontour::evolution::Mode::Preserve
     );
     for _ in 0..40 {
@@ -229,7 +240,7 @@ fn the_engine_choice_keeps_two_touching_seeds_apart() {
         rec.contours, 2,
         "preserve keeps the two seeds' contours apart"
     );
-    assert!(h.state().log.is_empty());
+    assert!(h.state().doc.events().is_empty());
 }
 
 fn now(app: &mut TopoApp, c: Command) {
@@ -268,10 +279,10 @@ fn side_by_side_runs_a_second_engine_on_the_same_shapes() {
     }
     let s = h.state();
     let a = s.shown_record().expect("main run");
-    let b = s.shown_record_b().expect("side-by-side run");
+    let b = s.doc.shown_record_b().expect("side-by-side run");
     assert_eq!(a.contours, 1, "adaptive merges through the bridge");
     assert_eq!(b.contours, 2, "implicit keeps the two seeds apart");
-    assert!(s.run_b.as_ref().unwrap().evolver.is_converged());
+    assert!(s.doc.run_b.as_ref().unwrap().evolver.is_converged());
     // Both halves are labelled with their engine.
     h.get_by_label("Canvas");
 }
@@ -287,7 +298,7 @@ fn find_seeds_places_one_seed_per_object() {
     h.get_by_label("Find seeds").click();
     h.step();
     h.step();
-    let shapes = &h.state().shapes;
+    let shapes = &h.state().doc.shapes;
     assert_eq!(shapes.len(), 4, "{shapes:?}");
     // Each seed is its object's basin (a polygon), or a disk where the basin is tiny.
     assert!(shapes
@@ -295,7 +306,7 @@ fn find_seeds_places_one_seed_per_object() {
         .all(|s| matches!(s, Shape::Disk { .. } | Shape::Polygon(_))));
     h.state_mut().send(Command::Step(400));
     h.step();
-    let run = h.state().run.as_ref().expect("a run");
+    let run = h.state().doc.run.as_ref().expect("a run");
     assert_eq!(run.evolver.contours().contour_count(), 4);
 }
 
@@ -311,15 +322,15 @@ fn the_e_key_steps_to_the_next_event() {
     h.step();
     h.step();
     let app = h.state();
-    let run = app.run.as_ref().expect("E started a run");
-    assert!(app.shown > 0, "E advanced");
+    let run = app.doc.run.as_ref().expect("E started a run");
+    assert!(app.doc.shown > 0, "E advanced");
     let rec = app.shown_record().expect("a frame on screen");
     assert!(
         !rec.events.is_empty() || run.evolver.is_finished(),
         "E stopped at frame {} without an event",
-        app.shown
+        app.doc.shown
     );
-    assert!(!app.log.is_empty(), "the event is in the log");
+    assert!(!app.doc.events().is_empty(), "the event is in the log");
 }
 
 /// The app exports a label image and an ImageJ ROI set of the frame on screen.
@@ -335,11 +346,15 @@ fn export_labels_and_roi_set() {
         dir.join(format!("topocontour-app-{}.zip", std::process::id())),
     );
     h.state_mut()
-        .send(Command::Export(ExportKind::Labels, tif.clone()));
+        .send(Command::Export(Format::Labels, tif.clone()));
     h.state_mut()
-        .send(Command::Export(ExportKind::Roi, zip.clone()));
+        .send(Command::Export(Format::Roi, zip.clone()));
     h.step();
-    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    assert!(
+        h.state().status.error.is_none(),
+        "{:?}",
+        h.state().status.error
+    );
     let labels = image::open(&tif).expect("label image").to_luma16();
     let max = labels.pixels().map(|p| p.0[0]).max().unwrap();
     let archive = zip::ZipArchive::new(std::fs::File::open(&zip).unwrap()).unwrap();
@@ -358,7 +373,11 @@ fn session_save_then_open_gives_the_same_state() {
     h.step();
     let path = save_session(&mut h, "app.session.json");
     let before = h.state();
-    let (shapes, settings, shown) = (before.shapes.clone(), before.settings.clone(), before.shown);
+    let (shapes, settings, shown) = (
+        before.doc.shapes.clone(),
+        before.doc.settings.clone(),
+        before.doc.shown,
+    );
     let contours = |a: &TopoApp| {
         let set = evolver(a).contours();
         (set.contour_count(), set.vertex_count(), set.region_area())
@@ -369,10 +388,10 @@ fn session_save_then_open_gives_the_same_state() {
     other.state_mut().send(Command::OpenSession(path));
     other.step();
     let after = other.state();
-    assert!(after.error.is_none(), "{:?}", after.error);
-    assert_eq!(after.shapes, shapes);
-    assert_eq!(after.settings.polarity, settings.polarity);
-    assert_eq!(after.shown, shown);
+    assert!(after.status.error.is_none(), "{:?}", after.status.error);
+    assert_eq!(after.doc.shapes, shapes);
+    assert_eq!(after.doc.settings.params.polarity, settings.params.polarity);
+    assert_eq!(after.doc.shown, shown);
     assert_eq!(contours(after), want);
 }
 
@@ -399,7 +418,7 @@ fn undo_and_redo_shape_edits() {
     }
     h.state_mut().send(Command::DeleteShape(0));
     h.step();
-    assert!(h.state().shapes.is_empty());
+    assert!(h.state().doc.shapes.is_empty());
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
     h.step();
     h.step();
@@ -407,15 +426,15 @@ fn undo_and_redo_shape_edits() {
         center: topocontour::Point::new(50.0, 40.0),
         radius: 5.0,
     };
-    assert_eq!(h.state().shapes, vec![moved.clone()], "undo the delete");
+    assert_eq!(h.state().doc.shapes, vec![moved.clone()], "undo the delete");
     h.get_by_label("Undo").click();
     h.step();
     h.step();
-    assert_eq!(h.state().shapes, vec![disk], "undo the whole drag");
+    assert_eq!(h.state().doc.shapes, vec![disk], "undo the whole drag");
     h.get_by_label("Undo").click();
     h.step();
     h.step();
-    assert!(h.state().shapes.is_empty(), "undo the add");
+    assert!(h.state().doc.shapes.is_empty(), "undo the add");
     h.key_press_modifiers(
         egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,
         egui::Key::Z,
@@ -425,49 +444,49 @@ fn undo_and_redo_shape_edits() {
     h.get_by_label("Redo").click();
     h.step();
     h.step();
-    assert_eq!(h.state().shapes, vec![moved], "redo add and drag");
+    assert_eq!(h.state().doc.shapes, vec![moved], "redo add and drag");
 }
 
 /// A parameter change clears the run on screen; Undo brings it back at its frame.
 #[test]
 fn undo_brings_back_a_run_a_parameter_change_cleared() {
     let mut h = sample_after(30);
-    let frame = h.state().shown;
-    assert!(frame > 0 && h.state().run.is_some());
+    let frame = h.state().doc.shown;
+    assert!(frame > 0 && h.state().doc.run.is_some());
     h.state_mut().send(Command::SetPolarity(
         topocontour::evolution::Polarity::Bright,
     ));
     h.step();
-    assert!(h.state().run.is_none());
+    assert!(h.state().doc.run.is_none());
     h.state_mut().send(Command::Undo);
     h.step();
     let app = h.state();
     assert_eq!(
-        app.settings.polarity,
+        app.doc.settings.params.polarity,
         topocontour::evolution::Polarity::Dark
     );
-    assert_eq!(app.shown, frame);
-    assert!(app.run.is_some(), "the run is back");
+    assert_eq!(app.doc.shown, frame);
+    assert!(app.doc.run.is_some(), "the run is back");
 }
 
 /// F1 opens the shortcut list, Esc closes it; ← goes one frame back.
 #[test]
 fn help_and_frame_keys() {
     let mut h = sample_after(5);
-    assert!(!h.state().show_help);
+    assert!(!h.state().view.show_help);
     h.key_press(egui::Key::F1);
     h.step();
     h.step();
-    assert!(h.state().show_help);
+    assert!(h.state().view.show_help);
     h.get_by_label("Keyboard shortcuts");
     h.key_press(egui::Key::Escape);
     h.step();
-    assert!(!h.state().show_help);
-    let shown = h.state().shown;
+    assert!(!h.state().view.show_help);
+    let shown = h.state().doc.shown;
     h.key_press(egui::Key::ArrowLeft);
     h.step();
     h.step();
-    assert_eq!(h.state().shown, shown - 1);
+    assert_eq!(h.state().doc.shown, shown - 1);
 }
 
 /// A 16-bit image whose data fill 12 bits opens with a contrast window around them.
@@ -482,7 +501,7 @@ fn a_twelve_bit_image_opens_with_its_own_contrast() {
     app.send(Command::OpenImage(path));
     let mut h = harness(app);
     h.step();
-    let (lo, hi) = h.state().settings.contrast;
+    let (lo, hi) = h.state().doc.settings.contrast;
     assert!(lo < 0.01 && hi > 0.05 && hi < 0.07, "{lo} {hi}");
 }
 
@@ -512,13 +531,17 @@ fn save_session(h: &mut Harness<'_, TopoApp>, name: &str) -> std::path::PathBuf 
     let path = temp(name);
     h.state_mut().send(Command::SaveSession(path.clone()));
     h.step();
-    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    assert!(
+        h.state().status.error.is_none(),
+        "{:?}",
+        h.state().status.error
+    );
     path
 }
 
 /// The evolver of the run on screen.
 fn evolver(app: &TopoApp) -> &topocontour::evolution::Evolver {
-    &app.run.as_ref().expect("a run").evolver
+    &app.doc.run.as_ref().expect("a run").evolver
 }
 
 /// How many contours the run on screen has now.
@@ -528,7 +551,7 @@ fn contour_count(h: &Harness<'_, TopoApp>) -> usize {
 
 /// Whether the event log holds an event that `is` accepts.
 fn logged(h: &Harness<'_, TopoApp>, is: impl Fn(&topocontour::TopologyEvent) -> bool) -> bool {
-    h.state().log.iter().any(|(_, e)| is(e))
+    h.state().doc.events().iter().any(|(_, e)| is(e))
 }
 
 /// Drags the contour vertex nearest to `from` to the right in `steps` hand moves of
@@ -539,6 +562,7 @@ fn drag_right(h: &mut Harness<'_, TopoApp>, from: topocontour::Point, steps: usi
         h.state_mut().send(Command::HandMove {
             vertex: v,
             to: topocontour::Point::new(from.x + 4.0 * k as f64, from.y),
+            stroke: 1,
         });
         h.step();
     }
@@ -569,7 +593,8 @@ fn hand_edits_merge_and_split_exactly() {
     assert_eq!(contour_count(&h), 1, "merged");
     assert!(h
         .state()
-        .log
+        .doc
+        .events()
         .iter()
         .any(|(f, e)| *f == 0 && matches!(e, TopologyEvent::Merge { .. })));
     h.state_mut().send(Command::Undo);
@@ -593,6 +618,7 @@ fn hand_edits_merge_and_split_exactly() {
     h.state_mut().send(Command::HandMove {
         vertex: v,
         to: Point::new(from.x, 80.0),
+        stroke: 2,
     });
     h.step();
     assert_eq!(contour_count(&h), 2, "split");
@@ -605,18 +631,18 @@ fn hand_edits_merge_and_split_exactly() {
 #[test]
 fn a_force_change_continues_from_the_frame_on_screen() {
     let mut h = sample_after(20);
-    let at = h.state().shown;
+    let at = h.state().doc.shown;
     assert_eq!(at, 20);
-    let before = h.state().run.as_ref().unwrap().history[at].rings.len();
-    let mut weights = h.state().settings.weights;
+    let before = h.state().doc.run.as_ref().unwrap().history[at].rings.len();
+    let mut weights = h.state().doc.settings.params.weights;
     weights.stretch = 0.6;
     h.state_mut()
         .send(Command::SetForces { weights, step: 0.5 });
     h.state_mut().send(Command::Step(5));
     h.step();
     let app = h.state();
-    let run = app.run.as_ref().expect("the run goes on");
-    assert_eq!(app.shown, at + 5, "continued from frame {at}");
+    let run = app.doc.run.as_ref().expect("the run goes on");
+    assert_eq!(app.doc.shown, at + 5, "continued from frame {at}");
     assert_eq!(
         run.history[at].rings.len(),
         before,
@@ -628,13 +654,21 @@ fn a_force_change_continues_from_the_frame_on_screen() {
         run.evolver.edits(),
         [topocontour::evolution::Edit::Forces { frame: 20, .. }]
     ));
-    assert!(app.notice.as_deref().unwrap_or("").contains("frame 20"));
+    assert!(app
+        .status
+        .notice
+        .as_deref()
+        .unwrap_or("")
+        .contains("frame 20"));
     h.state_mut().send(Command::Undo);
     h.step();
     let app = h.state();
-    assert_eq!(app.settings.weights.stretch, 0.2, "old forces back");
+    assert_eq!(
+        app.doc.settings.params.weights.stretch, 0.2,
+        "old forces back"
+    );
     assert!(evolver(app).edits().is_empty());
-    assert_eq!(app.shown, at);
+    assert_eq!(app.doc.shown, at);
 }
 
 /// A session keeps the edits made on the way (a force change and a hand drag, each at
@@ -647,7 +681,7 @@ fn a_session_replays_hand_edits_and_force_changes() {
     let mut h = harness(app);
     h.step();
     drag_right(&mut h, Point::new(52.0, 64.0), 4);
-    let mut weights = h.state().settings.weights;
+    let mut weights = h.state().doc.settings.params.weights;
     weights.bend = 0.2;
     h.state_mut().send(Command::SetForces {
         weights,
@@ -668,14 +702,18 @@ fn a_session_replays_hand_edits_and_force_changes() {
     other.step();
     other.state_mut().send(Command::OpenSession(path.clone()));
     other.step();
-    assert!(other.state().error.is_none(), "{:?}", other.state().error);
-    assert_eq!(other.state().shown, h.state().shown);
+    assert!(
+        other.state().status.error.is_none(),
+        "{:?}",
+        other.state().status.error
+    );
+    assert_eq!(other.state().doc.shown, h.state().doc.shown);
     assert_eq!(
         points(other.state()),
         want,
         "same contours, vertex for vertex"
     );
-    assert_eq!(other.state().settings.weights.bend, 0.2);
+    assert_eq!(other.state().doc.settings.params.weights.bend, 0.2);
     // Headless, the same session gives the same contours.
     let run = topocontour::io::session::Session::read(&path)
         .unwrap()
@@ -708,21 +746,21 @@ fn the_object_table_is_linked_to_the_canvas() {
     h.get_by_label(&format!("#{id}")).click();
     h.step();
     h.step();
-    assert_eq!(h.state().selected_contour, Some(id));
+    assert_eq!(h.state().view.selected_contour, Some(id));
     h.get_by_label(&format!("#{id}")).click();
     h.step();
     h.step();
-    assert_eq!(h.state().selected_contour, None);
+    assert_eq!(h.state().view.selected_contour, None);
 }
 
 /// Without a desktop portal a file dialog gives no path: the built-in path field takes
 /// a typed one (here: open an image, then export next to it under the image's name).
 #[test]
 fn the_path_field_stands_in_for_a_file_dialog() {
-    use topocontour::app::{ExportKind, PathPrompt, PathPurpose};
+    use topocontour::app::{PathPrompt, PathPurpose};
     let mut h = harness(TopoApp::default());
     h.step();
-    h.state_mut().path_prompt = Some(PathPrompt {
+    h.state_mut().view.path_prompt = Some(PathPrompt {
         purpose: PathPurpose::OpenImage,
         text: case_image("bridge_merge").display().to_string(),
     });
@@ -731,19 +769,20 @@ fn the_path_field_stands_in_for_a_file_dialog() {
     h.get_by_label("OK").click();
     h.step();
     h.step();
-    assert!(h.state().error.is_none(), "{:?}", h.state().error);
-    assert_eq!(h.state().image_name, "image.png");
-    assert!(h.state().path_prompt.is_none());
-    assert_eq!(
-        ExportKind::Labels.default_name("image.png"),
-        "image.labels.tif"
+    assert!(
+        h.state().status.error.is_none(),
+        "{:?}",
+        h.state().status.error
     );
+    assert_eq!(h.state().doc.image_name, "image.png");
+    assert!(h.state().view.path_prompt.is_none());
+    assert_eq!(Format::Labels.file_name("image"), "image.labels.tif");
     let out = temp("prompt.svg");
     h.state_mut().send(Command::WrapBorder(4.0));
     h.state_mut().send(Command::Step(2));
     h.step();
-    h.state_mut().path_prompt = Some(PathPrompt {
-        purpose: PathPurpose::Export(ExportKind::Svg),
+    h.state_mut().view.path_prompt = Some(PathPrompt {
+        purpose: PathPurpose::Export(Format::Svg),
         text: out.display().to_string(),
     });
     h.step();
@@ -751,7 +790,11 @@ fn the_path_field_stands_in_for_a_file_dialog() {
     h.get_by_label("OK").click();
     h.step();
     h.step();
-    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    assert!(
+        h.state().status.error.is_none(),
+        "{:?}",
+        h.state().status.error
+    );
     assert!(std::fs::read_to_string(&out).unwrap().contains("<svg"));
     let _ = std::fs::remove_file(out);
 }
@@ -777,28 +820,40 @@ fn a_tiff_stack_opens_with_its_pages_and_pixel_size() {
     let mut h = harness(TopoApp::default());
     h.state_mut().send(Command::OpenImage(path.clone()));
     h.step();
-    assert!(h.state().error.is_none(), "{:?}", h.state().error);
-    assert!(h.state().notice.as_deref().unwrap().contains("3 pages"));
-    assert_eq!(h.state().stack.pages, 3);
-    let pixel = h.state().stack.pixel.clone().expect("resolution read");
+    assert!(
+        h.state().status.error.is_none(),
+        "{:?}",
+        h.state().status.error
+    );
+    assert!(h
+        .state()
+        .status
+        .notice
+        .as_deref()
+        .unwrap()
+        .contains("3 pages"));
+    assert_eq!(h.state().doc.stack.pages, 3);
+    let pixel = h.state().doc.stack.pixel.clone().expect("resolution read");
     assert_eq!(pixel.unit, "cm");
     assert!((pixel.size - 1e-4).abs() < 1e-12);
-    let mean = |a: &TopoApp| a.image.as_ref().unwrap().data.iter().sum::<f32>();
+    let mean = |a: &TopoApp| a.doc.image.as_ref().unwrap().data.iter().sum::<f32>();
     let first = mean(h.state());
     h.state_mut().send(Command::WrapBorder(2.0));
     h.state_mut().send(Command::SetPage(2));
     h.step();
-    assert_eq!(h.state().stack.page, 2);
+    assert_eq!(h.state().doc.stack.page, 2);
     assert!(mean(h.state()) < first, "page 3 is darker");
-    assert_eq!(h.state().shapes.len(), 1, "shapes stay");
+    assert_eq!(h.state().doc.shapes.len(), 1, "shapes stay");
     h.state_mut().send(Command::Step(3));
     let csv = temp("app-stack.csv");
-    h.state_mut().send(Command::Export(
-        topocontour::app::ExportKind::Csv,
-        csv.clone(),
-    ));
+    h.state_mut()
+        .send(Command::Export(Format::Csv, csv.clone()));
     h.step();
-    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    assert!(
+        h.state().status.error.is_none(),
+        "{:?}",
+        h.state().status.error
+    );
     let text = std::fs::read_to_string(&csv).unwrap();
     assert!(
         text.lines().nth(1).unwrap().contains(",0.0001,\"cm\","),
@@ -855,15 +910,19 @@ fn apply_to_folder_runs_in_the_background() {
     app.send(Command::ApplyToFolder(dir.clone()));
     let mut h = harness(app);
     h.step();
-    assert!(h.state().folder.is_some(), "{:?}", h.state().notice);
+    assert!(
+        h.state().jobs.folder.is_some(),
+        "{:?}",
+        h.state().status.notice
+    );
     h.get_by_label("Cancel");
     let t = std::time::Instant::now();
-    while h.state().folder.is_some() {
+    while h.state().jobs.folder.is_some() {
         assert!(t.elapsed().as_secs() < 60, "the folder run finishes");
         std::thread::sleep(std::time::Duration::from_millis(20));
         h.step();
     }
-    let notice = h.state().notice.clone().unwrap();
+    let notice = h.state().status.notice.clone().unwrap();
     assert!(notice.contains("wrote 3 images"), "{notice}");
     let out = dir.join("topocontour");
     for i in 0..3 {
@@ -897,16 +956,27 @@ fn a_large_image_is_prepared_in_the_background() {
     app.send(Command::Step(3));
     let mut h = harness(app);
     h.step();
-    assert!(h.state().preparing.is_some(), "prepared in the background");
-    assert!(h.state().run.is_none());
+    assert!(
+        h.state().jobs.preparing.is_some(),
+        "prepared in the background"
+    );
+    assert!(h.state().doc.run.is_none());
     let t = std::time::Instant::now();
-    while h.state().preparing.is_some() {
+    while h.state().jobs.preparing.is_some() {
         assert!(t.elapsed().as_secs() < 120, "the preparation finishes");
         std::thread::sleep(std::time::Duration::from_millis(20));
         h.step();
     }
-    assert!(h.state().error.is_none(), "{:?}", h.state().error);
-    assert_eq!(h.state().shown, 3, "the steps asked meanwhile were done");
+    assert!(
+        h.state().status.error.is_none(),
+        "{:?}",
+        h.state().status.error
+    );
+    assert_eq!(
+        h.state().doc.shown,
+        3,
+        "the steps asked meanwhile were done"
+    );
     let _ = std::fs::remove_file(path);
 }
 
@@ -934,13 +1004,13 @@ fn the_open_holes_check_box_decides_whether_a_wrap_finds_a_ring_hole() {
     app.apply();
     let mut h = harness(app);
     h.step();
-    assert!(h.state().settings.open_holes);
+    assert!(h.state().doc.settings.params.open_holes);
     assert_eq!(run_holes(&mut h), 1, "the ring's hole opens");
     h.get_by_label("open holes").click();
     h.step();
-    assert!(!h.state().settings.open_holes);
+    assert!(!h.state().doc.settings.params.open_holes);
     assert_eq!(run_holes(&mut h), 0, "no hole without nucleation");
     h.state_mut().send(Command::Undo);
     h.step();
-    assert!(h.state().settings.open_holes);
+    assert!(h.state().doc.settings.params.open_holes);
 }

@@ -10,8 +10,9 @@
 //! -- --ignored` runs ten million.
 
 use proptest::prelude::*;
-use topocontour::check::{run_random_moves, MoveMix};
+use topocontour::check::{run_moves_under, run_random_moves, MoveMix};
 use topocontour::contours::BroadPhaseKind;
+use topocontour::topology::TopologyPolicy;
 
 const CASES: u32 = 100;
 const MOVES_PER_CASE: usize = 1000;
@@ -55,4 +56,38 @@ fn ten_million_random_moves() {
         .unwrap_or_else(|e| panic!("{e}"));
     }
     println!("{total} moves, {events} topology events");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 60, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// The tracking policy (seed 003 with merges and new holes held back): no merge and no
+    /// new hole ever happens, every split is reported (the oracle's event bookkeeping),
+    /// `sanity_check` holds after every move, an allowed move is exactly the adaptive one
+    /// and a held move changes nothing.
+    #[test]
+    fn random_moves_under_the_tracking_policy(seed in any::<u64>(), rings in 1usize..7, lattice in proptest::bool::weighted(0.3), hash in proptest::bool::weighted(0.3), wall in proptest::bool::weighted(0.3)) {
+        let broad = if hash { BroadPhaseKind::Hash } else { BroadPhaseKind::Bins };
+        let r = run_moves_under(seed, rings, MOVES_PER_CASE, MoveMix { lattice, broad, wall }, TopologyPolicy::TRACKING);
+        prop_assert!(r.is_ok(), "{}", r.unwrap_err());
+    }
+}
+
+/// Over many seeds the tracking policy both holds moves back and lets splits through, so
+/// the property above is not vacuous.
+#[test]
+fn the_tracking_policy_holds_merges_and_lets_splits_through() {
+    let (mut events, mut held) = (0, 0);
+    for seed in 0..20u64 {
+        let mix = MoveMix {
+            lattice: false,
+            broad: BroadPhaseKind::Bins,
+            wall: false,
+        };
+        let (e, h) = run_moves_under(seed, 4, 1000, mix, TopologyPolicy::TRACKING).unwrap();
+        events += e;
+        held += h;
+    }
+    assert!(held > 50, "held {held}");
+    assert!(events > 20, "events {events}");
 }

@@ -1,8 +1,10 @@
-//! Files the app writes and reads: exports of the frame on screen and sessions, with
-//! the errors a user can meet.
+//! Files the app writes and reads: images, exports of the frame on screen and sessions,
+//! with the errors a user can meet.
 
-use super::command::{Command, ExportKind};
-use super::TopoApp;
+use super::command::Command;
+use super::path_prompt::PathPurpose;
+use super::{Document, Run, TopoApp};
+use crate::io::export::Format;
 use crate::io::{OutputFiles, Outputs};
 use std::path::{Path, PathBuf};
 
@@ -18,9 +20,9 @@ pub enum AppError {
     /// Nothing has run yet.
     #[error("nothing to export yet: run the evolution first")]
     NothingToExport,
-    /// A 16-bit label image holds 65,535 labels.
-    #[error("more than 65,535 objects for a 16-bit label image")]
-    TooManyLabels,
+    /// An output could not be rendered (too many labels).
+    #[error(transparent)]
+    Export(#[from] crate::io::export::ExportError),
     /// The session's image is not the one it was saved with.
     #[error("{} changed since the session was saved", .0.display())]
     ImageChanged(PathBuf),
@@ -30,6 +32,9 @@ pub enum AppError {
     /// The run could not start.
     #[error(transparent)]
     Evolve(#[from] crate::evolution::EvolveError),
+    /// A session's job could not start.
+    #[error(transparent)]
+    Job(#[from] crate::job::JobError),
     /// A session could not be read or written.
     #[error(transparent)]
     Session(#[from] crate::io::session::SessionError),
@@ -47,34 +52,141 @@ pub enum AppError {
 }
 
 impl TopoApp {
+    /// Opens page 1 of the image at `p` as a new document (settings reset: each image has
+    /// its own kind, polarity and engine).
+    fn open_image(&mut self, p: PathBuf) {
+        match crate::io::load_image_page(&p, 0) {
+            Ok((f, info)) => {
+                self.view.prefs.last_dir = p.parent().map(Path::to_path_buf);
+                self.reset_run();
+                let mut doc = Document::of_image(f, crate::io::folder::file_name(&p));
+                doc.image_path = Some(p);
+                doc.stack.pages = info.pages;
+                doc.stack.pixel = info.pixel_size;
+                self.status.error = None;
+                self.status.notice = (info.pages > 1).then(|| {
+                    format!(
+                        "{} holds {} pages: page 1 is shown (choose another under Image)",
+                        doc.image_name, info.pages
+                    )
+                });
+                self.doc = doc;
+                self.view.selected = None;
+                self.view.selected_contour = None;
+            }
+            Err(e) => self.status.error = Some(e.into()),
+        }
+    }
+
+    /// A file dialog opening in the folder of the last file opened.
+    fn dialog(&self) -> rfd::FileDialog {
+        let d = rfd::FileDialog::new();
+        match &self.view.prefs.last_dir {
+            Some(dir) => d.set_directory(dir),
+            None => d,
+        }
+    }
+
+    /// Images, exports and sessions (files chosen in a dialog, or given).
+    pub(super) fn files(&mut self, c: Command) {
+        match c {
+            Command::OpenImage(p) => self.open_image(p),
+            Command::OpenDialog => {
+                let d = self
+                    .dialog()
+                    .add_filter("images", &["png", "jpg", "jpeg", "tif", "tiff"]);
+                match d.pick_file() {
+                    Some(p) => self.apply_now(Command::OpenImage(p)),
+                    None => self.prompt_path(PathPurpose::OpenImage, String::new()),
+                }
+            }
+            Command::Export(kind, path) => match self.export(kind, &path) {
+                Ok(()) => self.status.notice = Some(format!("wrote {}", path.display())),
+                Err(e) => self.status.error = Some(e),
+            },
+            Command::ExportDialog(kind) => {
+                let name = kind.file_name(&super::path_prompt::stem(&self.doc.image_name));
+                let d = self
+                    .dialog()
+                    .add_filter(kind.extension(), &[kind.extension()])
+                    .set_file_name(&name);
+                match d.save_file() {
+                    Some(p) => self.apply_now(Command::Export(kind, p)),
+                    None => self.prompt_path(PathPurpose::Export(kind), name),
+                }
+            }
+            Command::SessionDialog(save) => self.session_dialog(save),
+            Command::ApplyToFolder(dir) => self.apply_to_folder(&dir),
+            Command::ApplyToFolderDialog => match self.dialog().pick_folder() {
+                Some(p) => self.apply_now(Command::ApplyToFolder(p)),
+                None => self.prompt_path(PathPurpose::ApplyToFolder, String::new()),
+            },
+            Command::CancelFolder => {
+                if let Some(f) = &self.jobs.folder {
+                    f.cancel();
+                }
+            }
+            Command::SaveSession(p) => match self.save_session(&p) {
+                Ok(()) => self.status.notice = Some(format!("session saved to {}", p.display())),
+                Err(e) => self.status.error = Some(e),
+            },
+            Command::OpenSession(p) => {
+                if let Err(e) = self.open_session(&p) {
+                    self.status.error = Some(e);
+                }
+            }
+            _ => unreachable!("not a files command: {c:?}"),
+        }
+    }
+
+    /// Chooses a session file in a dialog (or the path field), then saves or opens it.
+    fn session_dialog(&mut self, save: bool) {
+        let d = self.dialog().add_filter("sessions", &["json"]);
+        let name = format!(
+            "{}.session.json",
+            super::path_prompt::stem(&self.doc.image_name)
+        );
+        let chosen = if save {
+            d.set_file_name(&name).save_file()
+        } else {
+            d.pick_file()
+        };
+        match (chosen, save) {
+            (Some(p), true) => self.apply_now(Command::SaveSession(p)),
+            (Some(p), false) => self.apply_now(Command::OpenSession(p)),
+            (None, true) => self.prompt_path(PathPurpose::SaveSession, name),
+            (None, false) => self.prompt_path(PathPurpose::OpenSession, String::new()),
+        }
+    }
+
     /// Writes the session of the frame on screen.
-    pub(super) fn save_session(&mut self, path: &Path) -> Result<(), AppError> {
-        let (Some(image), Some(image_path)) = (&self.image, &self.image_path) else {
+    fn save_session(&mut self, path: &Path) -> Result<(), AppError> {
+        let doc = &self.doc;
+        let (Some(image), Some(image_path)) = (&doc.image, &doc.image_path) else {
             return Err(AppError::SampleHasNoFile);
         };
         let abs = image_path.canonicalize().map_err(|source| AppError::Io {
             path: image_path.clone(),
             source,
         })?;
-        let shown = self.shown;
-        let (frames, finished, params, edits) = match self.run.as_mut() {
+        let (frames, finished, params, edits) = match &doc.run {
             Some(run) => {
                 // The evolver at the frame on screen: its edits are the ones that led here.
-                run.rewind(shown.min(run.history.len() - 1));
-                let ev = &run.evolver;
+                let ev = run.evolver_at(doc.shown);
+                let edits = ev.edits().to_vec();
                 (
                     ev.frames(),
                     ev.is_finished(),
                     ev.start_params().clone(),
-                    ev.edits().to_vec(),
+                    edits,
                 )
             }
-            None => (0, false, self.params(), Vec::new()),
+            None => (0, false, doc.params().clone(), Vec::new()),
         };
         let s = crate::io::session::Session::new(
             &abs,
             image,
-            self.shapes.clone(),
+            doc.shapes.clone(),
             params,
             frames,
             finished,
@@ -84,93 +196,68 @@ impl TopoApp {
             source,
         })?
         .with_edits(&edits)
-        .with_page(self.stack.page)
+        .with_page(doc.stack.page)
         .stored_at(path);
+        let s = crate::io::session::Session {
+            pixel_size: doc.stack.pixel.clone(),
+            ..s
+        };
         OutputFiles::prepare(Some(&abs), &[path])?.commit(vec![s.to_json()?.into_bytes()])?;
         Ok(())
     }
 
-    /// Opens a session: image, shapes, parameters, then steps to its frame.
-    pub(super) fn open_session(&mut self, path: &Path) -> Result<(), AppError> {
+    /// Opens a session: its image (checked unchanged), then its job — shapes, parameters,
+    /// edits at their frames, where it stopped — driven through a run that records every
+    /// frame ([`crate::job::Job::drive`], as `topocontour replay` runs it).
+    fn open_session(&mut self, path: &Path) -> Result<(), AppError> {
         let s = crate::io::session::Session::read(path)?;
-        let image_path = s.image_path(path);
-        self.apply_now(Command::OpenImage(image_path.clone()));
-        if let Some(e) = self.error.take() {
+        let job = s.job(path, None);
+        self.open_image(job.image.clone());
+        if let Some(e) = self.status.error.take() {
             return Err(e);
         }
-        let crc = crate::io::session::file_crc32(&image_path).map_err(|source| AppError::Io {
-            path: image_path.clone(),
+        let crc = crate::io::session::file_crc32(&job.image).map_err(|source| AppError::Io {
+            path: job.image.clone(),
             source,
         })?;
         if crc != s.image.crc32 {
-            return Err(AppError::ImageChanged(image_path));
+            return Err(AppError::ImageChanged(job.image));
         }
-        if s.page > 0 {
-            self.apply_now(Command::SetPage(s.page));
-            if let Some(e) = self.error.take() {
+        if job.page > 0 {
+            self.set_page(job.page);
+            if let Some(e) = self.status.error.take() {
                 return Err(e);
             }
         }
-        let p = &s.params;
-        self.settings.polarity = p.polarity;
-        self.settings.mode = p.mode;
-        self.settings.modality = p.modality;
-        self.settings.open_holes = p.open_holes;
-        self.settings.broad_phase = p.broad_phase;
-        self.settings.weights = p.weights;
-        self.settings.step = p.step;
-        self.settings.min_area = p.min_area;
-        self.shapes = s.shapes.clone();
-        self.reset_run();
-        if !self.ensure_run() {
-            return Err(self.error.take().unwrap_or(AppError::NoImage));
+        let doc = &mut self.doc;
+        doc.settings.params = job.params.clone();
+        doc.shapes = job.shapes.clone();
+        if job.pixel_size.is_some() {
+            doc.stack.pixel = job.pixel_size.clone();
         }
-        // The edits at their frames, then on to where the session was.
-        for edit in &s.edits {
-            if edit.frame() > self.shown {
-                self.step_frames(edit.frame() - self.shown);
-            }
-            let at = self.shown;
-            let run = self.run.as_mut().expect("ensured");
-            let mut failed = None;
-            let events = run.edit_at(at, |ev| {
-                let before = ev.events().len();
-                failed = ev.redo_edit(edit).err();
-                ev.events()[before..].iter().map(|e| e.event).collect()
-            });
-            if let Some(e) = failed {
-                return Err(e.into());
-            }
-            self.log.extend(events.into_iter().map(|e| (at, e)));
-            if let crate::evolution::Edit::Forces { weights, step, .. } = *edit {
-                self.settings.weights = weights;
-                self.settings.step = step;
-            }
-        }
-        if s.frames > self.shown {
-            self.step_frames(s.frames - self.shown);
-        }
+        let image = doc.image.clone().ok_or(AppError::NoImage)?;
+        let (ev, _) = job.start(&image)?;
+        let mut run = Run::new(ev);
+        job.drive(&mut run)?;
+        // The forces on screen are the last ones set on the way.
+        let p = run.evolver.params();
+        (doc.settings.params.weights, doc.settings.params.step) = (p.weights, p.step);
+        doc.shown = run.last();
+        doc.run = Some(run);
         Ok(())
     }
 
     /// Writes the frame on screen (the evolver's state at it) to `path`.
-    pub(super) fn export(&mut self, kind: ExportKind, path: &Path) -> Result<(), AppError> {
-        let Some(run) = self.run.as_mut() else {
+    fn export(&mut self, format: Format, path: &Path) -> Result<(), AppError> {
+        let doc = &self.doc;
+        let (Some(run), Some(image)) = (&doc.run, &doc.image) else {
             return Err(AppError::NothingToExport);
         };
-        run.rewind(self.shown.min(run.history.len() - 1));
-        let ev = &run.evolver;
-        let set = ev.filtered_contours(self.settings.min_area);
-        let out = Outputs::of(ev, &set, &self.image_name).with_pixel_size(self.stack.pixel.clone());
-        let bytes = match kind {
-            ExportKind::Svg => out.svg().into_bytes(),
-            ExportKind::GeoJson => out.geojson().into_bytes(),
-            ExportKind::Mask => out.mask_png(),
-            ExportKind::Csv => out.csv().into_bytes(),
-            ExportKind::Labels => out.labels_image(true).ok_or(AppError::TooManyLabels)?,
-            ExportKind::Roi => crate::io::roi::roi_zip(out.set),
-        };
-        OutputFiles::prepare(self.image_path.as_deref(), &[path])?.commit(vec![bytes])?;
+        let ev = run.evolver_at(doc.shown);
+        let set = ev.filtered_contours(doc.params().min_area);
+        let out = Outputs::of(&ev, &set, &doc.image_name).with_pixel_size(doc.stack.pixel.clone());
+        let bytes = format.render(&out, image, path)?;
+        OutputFiles::prepare(doc.image_path.as_deref(), &[path])?.commit(vec![bytes])?;
         Ok(())
     }
 }

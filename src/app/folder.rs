@@ -2,8 +2,9 @@
 //! on screen, on a background thread so the window stays responsive, with a progress bar
 //! and Cancel in the status bar. Outputs go to a `topocontour` folder inside the input
 //! folder: `NAME.json` and `NAME.csv` per image and `summary.csv` (as `topocontour
-//! batch` writes them; see [`crate::io::folder`]). Without shapes, each image gets one
-//! seed per object found in it.
+//! batch` writes them; see [`crate::io::folder`]). When the user placed seeds with Find
+//! seeds (or drew no shape), each image gets one seed per object found in it, as `batch
+//! --auto-seeds` does: this image's seeds would miss every object of another image.
 
 use super::TopoApp;
 use crate::io::folder::{list_images, FolderJob, SUMMARY_HEADER};
@@ -36,33 +37,40 @@ impl FolderRun {
 impl TopoApp {
     /// Starts segmenting every image of `dir` in the background.
     pub(super) fn apply_to_folder(&mut self, dir: &Path) {
-        if self.folder.is_some() {
-            self.notice = Some("a folder is already being segmented".into());
+        if self.jobs.folder.is_some() {
+            self.status.notice = Some("a folder is already being segmented".into());
             return;
         }
         let images = match list_images(dir) {
             Ok(i) if !i.is_empty() => i,
             Ok(_) => {
-                self.notice = Some(format!(
+                self.status.notice = Some(format!(
                     "{} holds no PNG, JPEG or TIFF image",
                     dir.display()
                 ));
                 return;
             }
             Err(e) => {
-                self.notice = Some(format!("cannot read {}: {e}", dir.display()));
+                self.status.notice = Some(format!("cannot read {}: {e}", dir.display()));
                 return;
             }
         };
         let out = dir.join("topocontour");
         if let Err(e) = std::fs::create_dir_all(&out) {
-            self.notice = Some(format!("cannot create {}: {e}", out.display()));
+            self.status.notice = Some(format!("cannot create {}: {e}", out.display()));
             return;
         }
+        let doc = &self.doc;
+        // Seeds found in this image fit no other: each image gets its own.
+        let shapes = if doc.found_seeds {
+            Vec::new()
+        } else {
+            doc.shapes.clone()
+        };
         let job = FolderJob {
             job: crate::job::Job {
-                auto_seeds: self.shapes.is_empty(),
-                ..crate::job::Job::new(PathBuf::new(), self.shapes.clone(), self.params())
+                auto_seeds: shapes.is_empty(),
+                ..crate::job::Job::new(PathBuf::new(), shapes, doc.params().clone())
             },
             out: out.clone(),
         };
@@ -94,19 +102,19 @@ impl TopoApp {
                 (ok, failed, cancel.load(Ordering::SeqCst))
             })
         };
-        self.folder = Some(FolderRun {
+        self.jobs.folder = Some(FolderRun {
             total,
             done,
             cancel,
             out,
             handle: Some(handle),
         });
-        self.notice = Some(format!("segmenting {total} images of {}", dir.display()));
+        self.status.notice = Some(format!("segmenting {total} images of {}", dir.display()));
     }
 
     /// Collects a finished folder run: what it wrote, in the status bar.
     pub(super) fn poll_folder(&mut self, ctx: &egui::Context) {
-        let Some(run) = self.folder.as_mut() else {
+        let Some(run) = self.jobs.folder.as_mut() else {
             return;
         };
         if !run.handle.as_ref().is_some_and(|h| h.is_finished()) {
@@ -116,7 +124,7 @@ impl TopoApp {
         }
         let out = run.out.clone();
         let result = run.handle.take().map(|h| h.join());
-        self.folder = None;
+        self.jobs.folder = None;
         match result {
             Some(Ok((ok, failed, cancelled))) => {
                 let mut text = format!("wrote {ok} images and summary.csv to {}", out.display());
@@ -126,9 +134,9 @@ impl TopoApp {
                 if let Some(first) = failed.first() {
                     text.push_str(&format!("; {} failed, first: {first}", failed.len()));
                 }
-                self.notice = Some(text);
+                self.status.notice = Some(text);
             }
-            _ => self.notice = Some("the folder run stopped unexpectedly".into()),
+            _ => self.status.notice = Some("the folder run stopped unexpectedly".into()),
         }
     }
 }

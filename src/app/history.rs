@@ -1,101 +1,43 @@
-//! Undo and redo of the user's actions.
+//! Undo and redo: an undo step is the [`Document`] as it was before a change.
 //!
-//! Before an action that changes the document (shapes, parameters, the image, a reset)
-//! the document is snapshotted, run included: a parameter change or a reset clears the
-//! run on screen, and Undo brings it back at the frame it was on. A drag sends one
-//! `MoveShape` per frame; consecutive moves of the same shape are one step. Playing,
-//! stepping, selecting and exporting are not document changes and are not undone.
+//! Before a command that changes the document ([`Command::undo_key`]) the document is
+//! kept, run included: a parameter change or a reset clears the run on screen, and Undo
+//! brings it back at the frame it was on. A gesture sends one command per frame (a shape
+//! dragged, a hand drag or brush stroke, a slider): consecutive commands of the same
+//! gesture are one step. Playing, stepping, selecting and exporting are not undone.
 
-use super::{Command, Run, Settings};
-use crate::evolution::Shape;
-use crate::topology::TopologyEvent;
-use std::sync::Arc;
+use super::command::{Command, UndoKey};
+use super::Document;
 
-/// The state an undo step restores.
-#[derive(Clone)]
-pub struct Snapshot {
-    pub image: Option<Arc<crate::evolution::Field>>,
-    pub image_name: String,
-    pub image_path: Option<std::path::PathBuf>,
-    pub stack: super::ImageStack,
-    pub sample_wrap: bool,
-    pub shapes: Vec<Shape>,
-    pub selected: Option<usize>,
-    pub settings: Settings,
-    pub run: Option<Run>,
-    pub run_b: Option<Run>,
-    pub shown: usize,
-    pub log: Vec<(usize, TopologyEvent)>,
-}
-
-/// Past and undone snapshots.
+/// Past and undone documents.
 #[derive(Default)]
 pub struct History {
-    past: Vec<Snapshot>,
-    future: Vec<Snapshot>,
-    /// What the last undo step dragged (a shape, or a contour vertex when true): further
-    /// moves of it join that step.
-    moving: Option<(u8, usize)>,
+    past: Vec<Document>,
+    future: Vec<Document>,
+    /// The gesture the last step belongs to: further commands of it join that step.
+    gesture: Option<UndoKey>,
 }
 
 /// Steps kept: runs can be large.
 const DEPTH: usize = 100;
 
 impl History {
-    /// Whether `c` changes the document (and so gets an undo step).
-    pub fn records(c: &Command) -> bool {
-        matches!(
-            c,
-            Command::OpenImage(_)
-                | Command::OpenSession(_)
-                | Command::AddShape(_)
-                | Command::MoveShape { .. }
-                | Command::DeleteShape(_)
-                | Command::WrapBorder(_)
-                | Command::FindSeeds
-                | Command::SetPolarity(_)
-                | Command::SetModality(_)
-                | Command::SetOpenHoles(_)
-                | Command::SetMode(_)
-                | Command::SetBroadPhase(_)
-                | Command::SetCompare(_)
-                | Command::Reset
-                | Command::ResetParameters
-                | Command::SetPage(_)
-                | Command::SetPixelSize(_)
-                | Command::SetForces { .. }
-                | Command::HandMove { .. }
-                | Command::Brush { .. }
-                | Command::DeleteContour(_)
-        )
-    }
-
     /// Whether `c` starts a new undo step (a change of the document that does not
-    /// continue the last step's drag); then the caller pushes the state before it.
+    /// continue the last step's gesture); then the caller pushes the document before it.
     pub fn starts_step(&mut self, c: &Command) -> bool {
-        if !Self::records(c) {
+        let Some(key) = c.undo_key() else {
             return false;
-        }
-        // A drag (of a shape, or of a contour vertex) is one step.
-        let dragging = match c {
-            Command::MoveShape { index, .. } => Some((0, *index)),
-            Command::HandMove { vertex, .. } => Some((1, *vertex as usize)),
-            // A slider drag is one step too.
-            Command::SetForces { .. } => Some((2, 0)),
-            Command::SetPixelSize(_) => Some((3, 0)),
-            // A brush stroke (one press) is one step.
-            Command::Brush { stroke, .. } => Some((4, *stroke as usize)),
-            _ => None,
         };
-        if dragging.is_some() && self.moving == dragging {
+        let gesture = matches!(key, UndoKey::Gesture(_)).then_some(key);
+        if gesture.is_some() && self.gesture == gesture {
             return false;
         }
-        self.moving = dragging;
+        self.gesture = gesture;
         true
     }
 
-    /// Pushes the state to return to when the step just started is undone.
-    pub fn push(&mut self, before: Snapshot) {
+    /// Pushes the document to return to when the step just started is undone.
+    pub fn push(&mut self, before: Document) {
         self.past.push(before);
         if self.past.len() > DEPTH {
             self.past.remove(0);
@@ -103,19 +45,19 @@ impl History {
         self.future.clear();
     }
 
-    /// The state to restore for Undo; `now` is kept for Redo.
-    pub fn undo(&mut self, now: Snapshot) -> Option<Snapshot> {
+    /// The document to restore for Undo; `now` is kept for Redo.
+    pub fn undo(&mut self, now: Document) -> Option<Document> {
         let s = self.past.pop()?;
         self.future.push(now);
-        self.moving = None;
+        self.gesture = None;
         Some(s)
     }
 
-    /// The state to restore for Redo; `now` is kept for Undo.
-    pub fn redo(&mut self, now: Snapshot) -> Option<Snapshot> {
+    /// The document to restore for Redo; `now` is kept for Undo.
+    pub fn redo(&mut self, now: Document) -> Option<Document> {
         let s = self.future.pop()?;
         self.past.push(now);
-        self.moving = None;
+        self.gesture = None;
         Some(s)
     }
 

@@ -1,14 +1,15 @@
 //! Keyboard shortcuts and the help window that lists them (F1 or ?).
 
-use super::{Command, TopoApp};
+use super::{Command, Ctx};
 use std::path::PathBuf;
 
 /// Every shortcut, as the help window lists it.
-pub const SHORTCUTS: [(&str, &str); 11] = [
+pub const SHORTCUTS: [(&str, &str); 12] = [
     ("Space", "play / pause"),
     ("Right arrow", "step one frame"),
     ("Left arrow", "one frame back"),
     ("E", "step to the next topology event"),
+    ("[ and ]", "brush smaller / larger"),
     (
         "Delete",
         "delete the selected shape (or, with Edit, the selected contour)",
@@ -21,93 +22,115 @@ pub const SHORTCUTS: [(&str, &str); 11] = [
     ("mouse wheel, middle drag", "zoom, pan"),
 ];
 
-impl TopoApp {
-    pub(super) fn keyboard(&mut self, ui: &egui::Ui) {
-        if ui.ctx().egui_wants_keyboard_input() {
-            return;
-        }
-        let (space, right, del, event) = ui.input(|i| {
-            (
-                i.key_pressed(egui::Key::Space),
-                i.key_pressed(egui::Key::ArrowRight),
-                i.key_pressed(egui::Key::Delete),
-                i.key_pressed(egui::Key::E),
-            )
-        });
-        let (left, escape, fit, help) = ui.input(|i| {
-            (
-                i.key_pressed(egui::Key::ArrowLeft),
-                i.key_pressed(egui::Key::Escape),
-                i.key_pressed(egui::Key::F),
-                i.key_pressed(egui::Key::F1) || i.key_pressed(egui::Key::Questionmark),
-            )
-        });
-        if left && self.shown > 0 {
-            self.send(Command::SeekFrame(self.shown - 1));
-        }
-        if escape {
-            if self.show_help {
-                self.show_help = false;
-            } else {
-                self.canvas.cancel_polygon();
-            }
-        }
-        if fit {
-            self.canvas.refit();
-        }
-        if help {
-            self.show_help = !self.show_help;
-        }
-        if event {
-            self.send(Command::StepToEvent);
-        }
-        // Redo first: Ctrl+Shift+Z also matches Ctrl+Z when Shift is ignored.
-        let (redo, undo) = ui.input_mut(|i| {
-            let redo = i.consume_key(
-                egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,
-                egui::Key::Z,
-            ) || i.consume_key(egui::Modifiers::COMMAND, egui::Key::Y);
-            (redo, i.consume_key(egui::Modifiers::COMMAND, egui::Key::Z))
-        });
-        if redo {
-            self.send(Command::Redo);
-        } else if undo {
-            self.send(Command::Undo);
-        }
-        if space {
-            self.send(if self.playing {
-                Command::Pause
-            } else {
-                Command::Play
-            });
-        }
-        if right {
-            self.send(Command::Step(1));
-        }
-        if del {
-            if let Some(id) = self.selected_contour {
-                self.send(Command::DeleteContour(id));
-            } else if let Some(i) = self.selected {
-                self.send(Command::DeleteShape(i));
-            }
-        }
-        let dropped: Vec<PathBuf> = ui.input(|i| {
-            i.raw
-                .dropped_files
-                .iter()
-                .map(|f| f.path().to_path_buf())
-                .filter(|p| !p.as_os_str().is_empty())
-                .collect()
-        });
-        if let Some(p) = dropped.into_iter().next() {
-            self.send(Command::OpenImage(p));
+/// The shortcuts of this frame, as commands (and view changes).
+pub(super) fn keyboard(cx: &mut Ctx, ui: &egui::Ui) {
+    if ui.ctx().egui_wants_keyboard_input() {
+        return;
+    }
+    frame_keys(cx, ui);
+    edit_keys(cx, ui);
+    let dropped: Vec<PathBuf> = ui.input(|i| {
+        i.raw
+            .dropped_files
+            .iter()
+            .map(|f| f.path().to_path_buf())
+            .filter(|p| !p.as_os_str().is_empty())
+            .collect()
+    });
+    if let Some(p) = dropped.into_iter().next() {
+        cx.send(Command::OpenImage(p));
+    }
+}
+
+/// Playback, stepping, the view and help.
+fn frame_keys(cx: &mut Ctx, ui: &egui::Ui) {
+    let (space, right, event) = ui.input(|i| {
+        (
+            i.key_pressed(egui::Key::Space),
+            i.key_pressed(egui::Key::ArrowRight),
+            i.key_pressed(egui::Key::E),
+        )
+    });
+    let (left, escape, fit, help) = ui.input(|i| {
+        (
+            i.key_pressed(egui::Key::ArrowLeft),
+            i.key_pressed(egui::Key::Escape),
+            i.key_pressed(egui::Key::F),
+            i.key_pressed(egui::Key::F1) || i.key_pressed(egui::Key::Questionmark),
+        )
+    });
+    let shown = cx.doc.shown;
+    if left && shown > 0 {
+        cx.send(Command::SeekFrame(shown - 1));
+    }
+    if escape {
+        if cx.view.show_help {
+            cx.view.show_help = false;
+        } else {
+            cx.view.canvas.cancel_polygon();
         }
     }
+    if fit {
+        cx.view.canvas.refit();
+    }
+    if help {
+        cx.view.show_help = !cx.view.show_help;
+    }
+    if event {
+        cx.send(Command::StepToEvent);
+    }
+    if space {
+        cx.send(if cx.view.playing {
+            Command::Pause
+        } else {
+            Command::Play
+        });
+    }
+    if right {
+        cx.send(Command::Step(1));
+    }
+}
 
-    /// The help window, while it is open.
-    pub(super) fn help_ui(&mut self, ctx: &egui::Context) {
-        let mut open = self.show_help;
-        egui::Window::new("Keyboard shortcuts")
+/// Undo, redo, delete and the brush size.
+fn edit_keys(cx: &mut Ctx, ui: &egui::Ui) {
+    // Redo first: Ctrl+Shift+Z also matches Ctrl+Z when Shift is ignored.
+    let (redo, undo) = ui.input_mut(|i| {
+        let redo = i.consume_key(
+            egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,
+            egui::Key::Z,
+        ) || i.consume_key(egui::Modifiers::COMMAND, egui::Key::Y);
+        (redo, i.consume_key(egui::Modifiers::COMMAND, egui::Key::Z))
+    });
+    if redo {
+        cx.send(Command::Redo);
+    } else if undo {
+        cx.send(Command::Undo);
+    }
+    let (del, smaller, larger) = ui.input(|i| {
+        (
+            i.key_pressed(egui::Key::Delete),
+            i.key_pressed(egui::Key::OpenBracket),
+            i.key_pressed(egui::Key::CloseBracket),
+        )
+    });
+    if del {
+        if let Some(id) = cx.view.selected_contour {
+            cx.send(Command::DeleteContour(id));
+        } else if let Some(i) = cx.view.selected {
+            cx.send(Command::DeleteShape(i));
+        }
+    }
+    let r = &mut cx.view.prefs.brush_radius;
+    if smaller || larger {
+        let factor: f64 = if larger { 1.25 } else { 0.8 };
+        *r = (*r * factor).clamp(*super::BRUSH_RADIUS.start(), *super::BRUSH_RADIUS.end());
+    }
+}
+
+/// The help window, while it is open.
+pub(super) fn help_ui(cx: &mut Ctx, ctx: &egui::Context) {
+    let mut open = cx.view.show_help;
+    egui::Window::new("Keyboard shortcuts")
             .open(&mut open)
             .collapsible(false)
             .show(ctx, |ui| {
@@ -119,8 +142,7 @@ impl TopoApp {
                     }
                 });
                 ui.separator();
-                ui.label("Tools: Seed (click, drag sets the radius), Rectangle, Polygon (click the first point to close), Select (drag moves, Delete removes), Edit (drag a contour vertex: merges, splits and holes happen exactly; click a contour to measure it, Delete removes it), Brush (a disc pushes contours: from inside a region the boundary moves out, from outside it moves in). Find seeds places one seed per object; Session > Apply to folder… runs every image of a folder.");
+                ui.label("Tools: Seed (click, drag sets the radius), Rectangle, Polygon (click the first point to close), Select (drag moves, Delete removes), Edit (drag a contour vertex: merges, splits and holes happen exactly; click a contour to measure it, Delete removes it), Brush (a disc pushes contours: from inside a region the boundary moves out, from outside it moves in; its radius is set beside the tools, or with [ and ]). Find seeds places one seed per object; Session > Apply to folder… runs every image of a folder.");
             });
-        self.show_help = open;
-    }
+    cx.view.show_help = open;
 }

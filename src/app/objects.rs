@@ -1,21 +1,25 @@
-//! The object table's rows: the regions of the frame on screen, measured once per frame
-//! shown (the table is drawn every frame).
+//! The object table: the regions of the frame on screen with their measurements, linked
+//! to the canvas (a click on a row selects the contour there; a contour selected on the
+//! canvas is the highlighted row). Rows are measured once per frame recording (the
+//! table is drawn every frame; an edit records the frame again).
 
-use super::FrameRecord;
+use super::{Command, Ctx, FrameRecord};
 use crate::evolution::measure::{regions_of_rings, Region};
+use std::sync::Arc;
 
-/// Measured regions of the last frame asked for.
+/// Measured regions of the last frame recording asked for.
 #[derive(Default)]
 pub struct ObjectTable {
-    key: Option<(usize, usize, usize)>,
-    rows: std::sync::Arc<Vec<Region>>,
+    stamp: Option<u64>,
+    rows: Arc<Vec<Region>>,
+    /// The selected contour the table last scrolled to.
+    scrolled_to: Option<u32>,
 }
 
 impl ObjectTable {
     /// The regions of `rec`, largest first.
-    pub fn rows(&mut self, rec: &FrameRecord) -> std::sync::Arc<Vec<Region>> {
-        let key = (rec.index, rec.vertices, rec.rings.len());
-        if self.key != Some(key) {
+    pub fn rows(&mut self, rec: &FrameRecord) -> Arc<Vec<Region>> {
+        if self.stamp != Some(rec.stamp) {
             let rings: Vec<(u32, bool, &[crate::geometry::Point])> = rec
                 .rings
                 .iter()
@@ -23,9 +27,80 @@ impl ObjectTable {
                 .collect();
             let mut rows = regions_of_rings(&rings);
             rows.sort_by(|a, b| b.area.total_cmp(&a.area));
-            self.rows = std::sync::Arc::new(rows);
-            self.key = Some(key);
+            self.rows = Arc::new(rows);
+            self.stamp = Some(rec.stamp);
         }
         self.rows.clone()
     }
+
+    /// Whether the table should scroll to `selected` (once per new selection: scrolling
+    /// every frame would keep the window repainting).
+    fn scroll_to(&mut self, selected: Option<u32>) -> bool {
+        let new = selected.is_some() && selected != self.scrolled_to;
+        self.scrolled_to = selected;
+        new
+    }
+}
+
+/// The table, in a collapsing section.
+pub(super) fn objects_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
+    egui::CollapsingHeader::new("Objects")
+        .default_open(true)
+        .show(ui, |ui| {
+            let Some(rec) = cx.doc.shown_record() else {
+                ui.label("No contours yet: play or step the evolution.");
+                return;
+            };
+            let rows = cx.view.objects.rows(rec);
+            ui.label(format!("{} objects in frame {}", rows.len(), rec.index))
+                .on_hover_text("regions of the frame on screen: area and perimeter in pixels, circularity 4πA/P² (1 for a disk)");
+            let selected = cx.view.selected_contour;
+            let scroll = cx.view.objects.scroll_to(selected);
+            let mut clicked = None;
+            egui::ScrollArea::vertical()
+                .id_salt("objects")
+                .max_height(220.0)
+                .show(ui, |ui| {
+                    egui::Grid::new("object table")
+                        .striped(true)
+                        .num_columns(5)
+                        .show(ui, |ui| clicked = rows_ui(ui, &rows, selected, scroll));
+                });
+            if let Some(id) = clicked {
+                cx.send(Command::SelectContour(id));
+            }
+        });
+}
+
+/// The header and one row per region; the selection a click asks for.
+fn rows_ui(
+    ui: &mut egui::Ui,
+    rows: &[Region],
+    selected: Option<u32>,
+    scroll: bool,
+) -> Option<Option<u32>> {
+    for h in ["object", "area px²", "perimeter px", "circularity", "holes"] {
+        ui.strong(h);
+    }
+    ui.end_row();
+    let mut clicked = None;
+    for r in rows {
+        let id = r.id.0;
+        let on = selected == Some(id);
+        let cell = ui
+            .selectable_label(on, format!("#{id}"))
+            .on_hover_text("select this contour on the canvas");
+        if on && scroll {
+            cell.scroll_to_me(None);
+        }
+        if cell.clicked() {
+            clicked = Some(if on { None } else { Some(id) });
+        }
+        ui.label(format!("{:.1}", r.area));
+        ui.label(format!("{:.1}", r.perimeter));
+        ui.label(format!("{:.3}", r.circularity));
+        ui.label(format!("{}", r.holes.len()));
+        ui.end_row();
+    }
+    clicked
 }

@@ -1,8 +1,9 @@
 //! The built-in path field: where no desktop portal answers a file dialog (a bare X
 //! session, a remote desktop), or the user cancelled it, the path can be typed instead.
 
-use super::command::{Command, ExportKind};
-use super::TopoApp;
+use super::command::Command;
+use super::{Ctx, TopoApp};
+use crate::io::export::Format;
 use std::path::PathBuf;
 
 /// What a typed path is for.
@@ -11,7 +12,7 @@ pub enum PathPurpose {
     /// An image to open.
     OpenImage,
     /// A file to export to.
-    Export(ExportKind),
+    Export(Format),
     /// A session file to write.
     SaveSession,
     /// A session file to open.
@@ -66,52 +67,52 @@ pub fn stem(image: &str) -> String {
 impl TopoApp {
     /// Opens the path field for `purpose`, starting from the last folder and `name`.
     pub(super) fn prompt_path(&mut self, purpose: PathPurpose, name: String) {
-        let dir = self.settings.last_dir.clone().unwrap_or_default();
+        let dir = self.view.prefs.last_dir.clone().unwrap_or_default();
         let text = if name.is_empty() && dir.as_os_str().is_empty() {
             String::new()
         } else {
             dir.join(name).display().to_string()
         };
-        self.path_prompt = Some(PathPrompt { purpose, text });
-        self.notice = Some("no file chosen in a dialog: type the path instead".into());
+        self.view.path_prompt = Some(PathPrompt { purpose, text });
+        self.status.notice = Some("no file chosen in a dialog: type the path instead".into());
     }
+}
 
-    /// The path field's window, while one is open.
-    pub(super) fn path_prompt_ui(&mut self, ctx: &egui::Context) {
-        let Some(prompt) = self.path_prompt.as_mut() else {
-            return;
-        };
-        let (mut done, mut cancel) = (false, false);
-        egui::Window::new(prompt.purpose.title())
-            .collapsible(false)
-            .resizable(false)
-            .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
-            .show(ctx, |ui| {
-                ui.label("Path (absolute, or relative to the folder topocontour started in):");
-                let field = ui.add(
-                    egui::TextEdit::singleline(&mut prompt.text)
-                        .desired_width(480.0)
-                        .hint_text("/path/to/file"),
-                );
-                if !field.has_focus() && !field.lost_focus() {
-                    field.request_focus();
-                }
-                let enter = ui.input(|i| i.key_pressed(egui::Key::Enter));
-                ui.horizontal(|ui| {
-                    done = ui
-                        .button("OK")
-                        .on_hover_text("use this path (Enter)")
-                        .clicked()
-                        || enter;
-                    cancel = ui.button("Cancel").on_hover_text("close (Esc)").clicked();
-                });
+/// The path field's window, while one is open.
+pub(super) fn path_prompt_ui(cx: &mut Ctx, ctx: &egui::Context) {
+    let Some(prompt) = cx.view.path_prompt.as_mut() else {
+        return;
+    };
+    let (mut done, mut cancel) = (false, false);
+    egui::Window::new(prompt.purpose.title())
+        .collapsible(false)
+        .resizable(false)
+        .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
+        .show(ctx, |ui| {
+            ui.label("Path (absolute, or relative to the folder topocontour started in):");
+            let field = ui.add(
+                egui::TextEdit::singleline(&mut prompt.text)
+                    .desired_width(480.0)
+                    .hint_text("/path/to/file"),
+            );
+            if !field.has_focus() && !field.lost_focus() {
+                field.request_focus();
+            }
+            let enter = ui.input(|i| i.key_pressed(egui::Key::Enter));
+            ui.horizontal(|ui| {
+                done = ui
+                    .button("OK")
+                    .on_hover_text("use this path (Enter)")
+                    .clicked()
+                    || enter;
+                cancel = ui.button("Cancel").on_hover_text("close (Esc)").clicked();
             });
-        if done && !prompt.text.trim().is_empty() {
-            let command = prompt.purpose.command(PathBuf::from(prompt.text.trim()));
-            self.path_prompt = None;
-            self.send(command);
-        } else if cancel || ctx.input(|i| i.key_pressed(egui::Key::Escape)) {
-            self.path_prompt = None;
-        }
+        });
+    if done && !prompt.text.trim().is_empty() {
+        let command = prompt.purpose.command(PathBuf::from(prompt.text.trim()));
+        cx.view.path_prompt = None;
+        cx.send(command);
+    } else if cancel || ctx.input(|i| i.key_pressed(egui::Key::Escape)) {
+        cx.view.path_prompt = None;
     }
 }

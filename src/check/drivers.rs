@@ -2,8 +2,9 @@
 //! decoded into moves (the fuzz target and the regression tests of its finds).
 
 use super::*;
-use crate::contours::BroadPhaseKind;
+use crate::contours::{BroadPhaseKind, ContourSet};
 use crate::geometry::{Aabb, Point};
+use crate::topology::{MoveError, TopologyEvent, TopologyPolicy};
 
 /// Runs `moves` random moves on a random ring set from `seed`, checking each one.
 /// Returns the number of topology events seen.
@@ -13,11 +14,26 @@ pub fn run_random_moves(
     moves: usize,
     mix: MoveMix,
 ) -> Result<u64, String> {
+    run_moves_under(seed, rings, moves, mix, TopologyPolicy::ADAPTIVE).map(|(events, _)| events)
+}
+
+/// [`run_random_moves`] with every move made under `policy`. Besides the oracle's checks,
+/// each move is made on a copy without a policy too: where the policy allows all of that
+/// move's events, the result and the rings must be the same; where it forbids one, the
+/// move must be held ([`MoveError::Held`]) and change nothing. Returns the events seen
+/// and the moves held.
+pub fn run_moves_under(
+    seed: u64,
+    rings: usize,
+    moves: usize,
+    mix: MoveMix,
+    policy: TopologyPolicy,
+) -> Result<(u64, u64), String> {
     let mut rng = Rng(seed);
     let mut set = random_rings_in(&mut rng, rings.max(1), 6.0, mix.broad);
     let domain = set.domain();
     let mut oracle = Oracle::new(&set, domain, 40);
-    let mut events = 0u64;
+    let (mut events, mut held) = (0u64, 0u64);
     for step in 0..moves {
         if set.vertex_count() < 12 || set.contour_count() == 0 {
             let c = Point::new(rng.range(15.0, 85.0), rng.range(15.0, 85.0));
@@ -41,8 +57,8 @@ pub fn run_random_moves(
             set.position(set.next(v)),
         );
         let remove = set.vertex_count() > 400 || rng.below(10) == 0;
-        let (q, result) = if remove {
-            (None, set.remove_vertex(v))
+        let q = if remove {
+            None
         } else {
             let q = draw_target(&set, v, &mut rng, mix);
             // The broad phase must offer every edge that brute force finds near the move.
@@ -58,16 +74,61 @@ pub fn run_random_moves(
                     ));
                 }
             }
-            (Some(q), set.move_vertex(v, q))
+            Some(q)
         };
-        if let Ok(ev) = &result {
-            events += ev.len() as u64;
+        let free = (policy != TopologyPolicy::ADAPTIVE).then(|| {
+            let mut copy = set.clone();
+            let r = match q {
+                Some(q) => copy.move_vertex(v, q),
+                None => copy.remove_vertex(v),
+            };
+            (copy, r)
+        });
+        let result = match q {
+            Some(q) => set.move_vertex_under(v, q, policy),
+            None => set.remove_vertex_under(v, policy),
+        };
+        let at = |e: String| {
+            format!(
+                "seed {seed} step {step}: move of {v} from {o:?} to {q:?} (p {p:?}, n {n:?}): {e}"
+            )
+        };
+        if let Some((copy, r)) = free {
+            compare_with_free(&set, &result, &copy, &r, policy).map_err(at)?;
+        }
+        match &result {
+            Ok(ev) => events += ev.len() as u64,
+            Err(MoveError::Held(_)) => held += 1,
+            Err(_) => {}
         }
         oracle
             .check_move(&set, &before, kinds, (p, o, n, q), &result, &mut rng)
-            .map_err(|e| format!("seed {seed} step {step}: move of {v} from {o:?} to {q:?} (p {p:?}, n {n:?}): {e}"))?;
+            .map_err(at)?;
     }
-    Ok(events)
+    Ok((events, held))
+}
+
+/// A move under a policy against the same move without one (`copy`, `free`).
+fn compare_with_free(
+    set: &ContourSet,
+    result: &Result<Vec<TopologyEvent>, MoveError>,
+    copy: &ContourSet,
+    free: &Result<Vec<TopologyEvent>, MoveError>,
+    policy: TopologyPolicy,
+) -> Result<(), String> {
+    match (free, result) {
+        (Ok(ev), Err(MoveError::Held(_))) if ev.iter().any(|e| !policy.allows(e)) => Ok(()),
+        (Ok(ev), Ok(got)) if ev.iter().all(|e| policy.allows(e)) => {
+            if got != ev || snapshot(set) != snapshot(copy) {
+                return Err(format!("allowed move differs: {got:?} vs {ev:?}"));
+            }
+            Ok(())
+        }
+        (Err(e), Err(got)) if e == got => Ok(()),
+        _ => Err(format!(
+            "under {policy:?}: {result:?}, without a policy: {free:?}"
+        )),
+    }
 }
 
 /// Decodes fuzzer bytes into a ring set and a sequence of moves and removals, checking

@@ -7,12 +7,14 @@ mod batch;
 mod bench;
 mod run;
 mod segment;
+mod track;
 
 pub use crate::io::Format;
 pub use batch::{batch, BatchArgs};
 pub use bench::{bench, BenchArgs};
 pub use run::{init_shapes, job_for, params_for, RunSettings};
 pub use segment::{replay, segment, OutputArgs, ReplayArgs, SegmentArgs};
+pub use track::{track, TrackArgs};
 
 use clap::{Parser, Subcommand};
 use std::io::Write;
@@ -45,6 +47,9 @@ pub enum Command {
     Batch(Box<BatchArgs>),
     /// Time the whole pipeline (load, evolve, export) on case folders.
     Bench(BenchArgs),
+    /// Track cells through a movie (divisions as split events); write the Cell Tracking
+    /// Challenge result.
+    Track(Box<TrackArgs>),
 }
 
 /// A failure to report: exit code 2 for bad input, 1 for internal errors.

@@ -139,7 +139,7 @@ fn parse_numbers<const N: usize>(s: &str) -> Result<[f64; N], String> {
     Ok(out)
 }
 
-fn parse_seed(s: &str) -> Result<(f64, f64, f64), String> {
+pub(super) fn parse_seed(s: &str) -> Result<(f64, f64, f64), String> {
     let [x, y, r] = parse_numbers::<3>(s)?;
     if r <= 0.0 {
         return Err(format!("seed radius must be positive, got {r}"));
@@ -147,7 +147,7 @@ fn parse_seed(s: &str) -> Result<(f64, f64, f64), String> {
     Ok((x, y, r))
 }
 
-fn parse_rect(s: &str) -> Result<(f64, f64, f64, f64), String> {
+pub(super) fn parse_rect(s: &str) -> Result<(f64, f64, f64, f64), String> {
     let [x0, y0, x1, y1] = parse_numbers::<4>(s)?;
     if x1 <= x0 || y1 <= y0 {
         return Err(format!("rectangle needs X0 < X1 and Y0 < Y1, got {s}"));

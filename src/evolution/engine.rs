@@ -10,7 +10,7 @@
 //! engine only does frames. [`Engines`] dispatches by enum, as the broad phase does, so an
 //! evolver stays `Clone` (the app's checkpoints) and calls are static.
 
-use super::explicit::{Adaptive, Explicit, Preserve};
+use super::explicit::{Adaptive, Explicit, Preserve, Track};
 use super::forces::ForceWeights;
 use super::implicit::ImplicitEngine;
 use crate::contours::ContourSet;
@@ -87,6 +87,8 @@ pub enum Engines {
     Adaptive(Explicit<Adaptive>),
     /// Topology kept explicitly with a gap (seed 004).
     Preserve(Explicit<Preserve>),
+    /// One object per seed that may divide (seed 003 under the tracking policy).
+    Track(Explicit<Track>),
     /// Topology kept implicitly (seed 000).
     Implicit(Box<ImplicitEngine>),
 }
@@ -96,6 +98,7 @@ macro_rules! each {
         match $self {
             Engines::Adaptive($e) => $body,
             Engines::Preserve($e) => $body,
+            Engines::Track($e) => $body,
             Engines::Implicit($e) => $body,
         }
     };

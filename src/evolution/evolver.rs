@@ -89,6 +89,10 @@ impl Evolver {
                 Engines::Preserve(Explicit::new(set, image.clone(), w, step)),
                 coarsest,
             ),
+            Mode::Track => (
+                Engines::Track(Explicit::new(set, image.clone(), w, step)),
+                coarsest,
+            ),
             Mode::Implicit => {
                 let engine = ImplicitEngine::new(&image, init, domain, params.broad_phase);
                 (Engines::Implicit(Box::new(engine)), 0)

@@ -18,6 +18,10 @@ pub enum Mode {
     /// Topology stays as initialised, implicitly: fast marching on a cut-edge grid
     /// (seed 000; see [`super::implicit`]).
     Implicit,
+    /// One object per seed that may divide: contours never merge and make no hole, but a
+    /// contour that pinches splits (seed 003 under
+    /// [`crate::topology::TopologyPolicy::TRACKING`]); what tracking cells needs.
+    Track,
 }
 
 impl Mode {
@@ -27,6 +31,7 @@ impl Mode {
             Mode::Adaptive => "adaptive",
             Mode::Preserve => "preserve",
             Mode::Implicit => "implicit",
+            Mode::Track => "track",
         }
     }
 }

@@ -4,6 +4,7 @@ pub mod atomic;
 pub mod export;
 pub mod folder;
 pub mod load;
+pub mod movie;
 pub mod roi;
 pub mod session;
 pub mod tiff_info;

@@ -128,6 +128,20 @@ pub fn decode_page(bytes: &[u8], name: &str, page: usize) -> Result<Field, LoadE
         .with_limits(Limits::default());
     dec.seek_to_image(page)
         .map_err(|e| err(format!("page {} of the file: {e}", page + 1)))?;
+    decode_current(&mut dec, name, page)
+}
+
+/// Decodes the page `dec` stands at (page `page`, 0-based, for messages) as luminance in
+/// [0, 1]; a movie reads its pages one after the other through this.
+pub(crate) fn decode_current<R: std::io::Read + std::io::Seek>(
+    dec: &mut Decoder<R>,
+    name: &str,
+    page: usize,
+) -> Result<Field, LoadError> {
+    let err = |reason: String| LoadError::Decode {
+        path: name.to_string(),
+        reason,
+    };
     let (w, h) = dec.dimensions().map_err(|e| err(e.to_string()))?;
     super::load::check_size(name, w, h)?;
     let colour = dec.colortype().map_err(|e| err(e.to_string()))?;

@@ -26,6 +26,7 @@ pub mod directive2;
 pub mod events;
 pub mod motion_region;
 mod plan;
+pub mod policy;
 pub mod preserve;
 mod quiet;
 
@@ -35,6 +36,7 @@ pub use events::TopologyEvent;
 use events::{assign_ids, NewLoop, OldRing};
 pub use motion_region::MotionRegion;
 use plan::MovePlan;
+pub use policy::TopologyPolicy;
 
 /// Why a move was refused (the set is unchanged).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
@@ -80,6 +82,10 @@ pub enum MoveError {
     /// A parameter along an edge is not in (0, 1).
     #[error("parameter along the edge must lie strictly between 0 and 1")]
     BadParameter,
+    /// The move would cause an event (named by its kind) that the topology policy holds
+    /// back ([`TopologyPolicy`]).
+    #[error("the topology policy holds back a {0}")]
+    Held(&'static str),
 }
 
 impl ContourSet {

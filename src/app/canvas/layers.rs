@@ -2,21 +2,26 @@
 //! with their fill, motion flashes, the user's shapes.
 
 use super::{fill, ring_color, View, FILL_WHILE_PLAYING_MAX_VERTICES};
-use crate::app::TopoApp;
+use crate::app::view::Texture;
+use crate::app::Ctx;
 use crate::evolution::Shape;
 use crate::geometry::Point;
 use egui::{Color32, Pos2, Rect, Stroke, Vec2};
 
 /// The image through the contrast window (the texture is rebuilt when the window moves).
 pub(super) fn image_layer(
-    app: &mut TopoApp,
+    cx: &mut Ctx,
     ui: &egui::Ui,
     painter: &egui::Painter,
     view: View,
-    image: &crate::evolution::Field,
+    image: &std::sync::Arc<crate::evolution::Field>,
 ) {
-    if app.texture.is_none() || app.texture_contrast != app.settings.contrast {
-        let (lo, hi) = app.settings.contrast;
+    let of = (
+        std::sync::Arc::as_ptr(image) as usize,
+        cx.doc.settings.contrast,
+    );
+    if cx.view.texture.as_ref().is_none_or(|t| t.of != of) {
+        let (lo, hi) = of.1;
         let span = (hi - lo).max(1e-3);
         let pixels: Vec<Color32> = image
             .data
@@ -24,14 +29,13 @@ pub(super) fn image_layer(
             .map(|&v| Color32::from_gray((((v - lo) / span).clamp(0.0, 1.0) * 255.0) as u8))
             .collect();
         let img = egui::ColorImage::new([image.width, image.height], pixels);
-        app.texture = Some(
-            ui.ctx()
-                .load_texture("image", img, egui::TextureOptions::NEAREST),
-        );
-        app.texture_contrast = app.settings.contrast;
+        let handle = ui
+            .ctx()
+            .load_texture("image", img, egui::TextureOptions::NEAREST);
+        cx.view.texture = Some(Texture { handle, of });
     }
-    if let Some(t) = &app.texture {
-        painter.image(t.id(), image_rect(view, image), UV, Color32::WHITE);
+    if let Some(t) = &cx.view.texture {
+        painter.image(t.handle.id(), image_rect(view, image), UV, Color32::WHITE);
     }
 }
 
@@ -64,24 +68,24 @@ fn draw_rings(painter: &egui::Painter, view: View, rings: &[crate::app::RingView
 
 /// The second engine's half: the same image and view, its contours, both halves labelled.
 pub(super) fn compare_layer(
-    app: &TopoApp,
+    cx: &Ctx,
     full_painter: &egui::Painter,
     painter: &egui::Painter,
     view: View,
     r: Rect,
 ) {
-    let (Some(t), Some(image)) = (&app.texture, &app.image) else {
+    let (Some(t), Some(image)) = (&cx.view.texture, &cx.doc.image) else {
         return;
     };
     let p2 = full_painter.with_clip_rect(r);
     let shift = r.min - view.rect.min;
     p2.image(
-        t.id(),
+        t.handle.id(),
         image_rect(view, image).translate(shift),
         UV,
         Color32::WHITE,
     );
-    if let Some(rec) = app.shown_record_b() {
+    if let Some(rec) = cx.doc.shown_record_b() {
         draw_rings(&p2, view, &rec.rings, shift);
     }
     let label = |p: &egui::Painter, at: Rect, text: String| {
@@ -96,13 +100,17 @@ pub(super) fn compare_layer(
     let count = |rec: Option<&crate::app::FrameRecord>| {
         rec.map_or(String::new(), |r| format!(" — {} contours", r.contours))
     };
-    let compare = app.settings.compare.map_or("", |m| m.name());
-    label(&p2, r, format!("{compare}{}", count(app.shown_record_b())));
-    let mode = app.settings.mode.name();
+    let compare = cx.doc.settings.compare.map_or("", |m| m.name());
+    label(
+        &p2,
+        r,
+        format!("{compare}{}", count(cx.doc.shown_record_b())),
+    );
+    let mode = cx.doc.params().mode.name();
     label(
         painter,
         view.rect,
-        format!("{mode}{}", count(app.shown_record())),
+        format!("{mode}{}", count(cx.doc.shown_record())),
     );
     full_painter.line_segment(
         [
@@ -114,28 +122,19 @@ pub(super) fn compare_layer(
 }
 
 /// The contours of the frame on screen, their region filled (holes open).
-pub(super) fn contours_layer(app: &mut TopoApp, painter: &egui::Painter, view: View) {
-    let Some(rec) = app
-        .run
-        .as_ref()
-        .and_then(|r| r.history.get(app.shown.min(r.history.len() - 1)))
-    else {
+pub(super) fn contours_layer(cx: &mut Ctx, painter: &egui::Painter, view: View) {
+    let Some(rec) = cx.doc.shown_record() else {
         return;
     };
     // Filling triangulates every ring; for large sets it waits until playback pauses so
     // that playing stays fluid.
     let small = rec.vertices <= FILL_WHILE_PLAYING_MAX_VERTICES;
-    if app.settings.show_fill && (small || !app.playing) {
-        let cs = &mut app.canvas;
-        let key = (rec.index, rec.vertices);
-        let stale = cs
-            .fill_cache
-            .as_ref()
-            .is_none_or(|(i, v, _)| (*i, *v) != key);
-        if stale {
-            cs.fill_cache = Some((key.0, key.1, fill::FillMesh::of(&rec.rings)));
+    if cx.view.prefs.show_fill && (small || !cx.view.playing) {
+        let cs = &mut cx.view.canvas;
+        if cs.fill_cache.as_ref().is_none_or(|(s, _)| *s != rec.stamp) {
+            cs.fill_cache = Some((rec.stamp, fill::FillMesh::of(&rec.rings)));
         }
-        if let Some((_, _, m)) = &cs.fill_cache {
+        if let Some((_, m)) = &cs.fill_cache {
             painter.add(m.to_mesh(
                 &|p| view.to_screen(p),
                 Color32::from_rgba_unmultiplied(255, 170, 60, 60),
@@ -143,7 +142,8 @@ pub(super) fn contours_layer(app: &mut TopoApp, painter: &egui::Painter, view: V
         }
     }
     // The selected contour (Edit tool or object table) under a white halo.
-    if let Some(r) = app
+    if let Some(r) = cx
+        .view
         .selected_contour
         .and_then(|id| rec.rings.iter().find(|r| r.id == id))
     {
@@ -155,10 +155,17 @@ pub(super) fn contours_layer(app: &mut TopoApp, painter: &egui::Painter, view: V
 }
 
 /// Flashes the motion regions of this frame's events and of the few frames before it.
-pub(super) fn motion_layer(app: &TopoApp, painter: &egui::Painter, view: View) {
-    let Some(run) = app.run.as_ref() else { return };
+pub(super) fn motion_layer(cx: &Ctx, painter: &egui::Painter, view: View) {
+    let Some(run) = cx.doc.run.as_ref() else {
+        return;
+    };
     for back in 0..6usize {
-        let Some(old) = app.shown.checked_sub(back).and_then(|i| run.history.get(i)) else {
+        let Some(old) = cx
+            .doc
+            .shown
+            .checked_sub(back)
+            .and_then(|i| run.history.get(i))
+        else {
             break;
         };
         let color = Color32::from_rgba_unmultiplied(255, 40, 200, 255 - back as u8 * 40);
@@ -176,9 +183,9 @@ pub(super) fn motion_layer(app: &TopoApp, painter: &egui::Painter, view: View) {
 }
 
 /// The user's shapes, the selected one highlighted.
-pub(super) fn shapes_layer(app: &TopoApp, painter: &egui::Painter, view: View) {
-    for (i, s) in app.shapes.iter().enumerate() {
-        let sel = app.selected == Some(i);
+pub(super) fn shapes_layer(cx: &Ctx, painter: &egui::Painter, view: View) {
+    for (i, s) in cx.doc.shapes.iter().enumerate() {
+        let sel = cx.view.selected == Some(i);
         let stroke = Stroke::new(
             if sel { 2.5 } else { 1.5 },
             if sel {
@@ -194,7 +201,7 @@ pub(super) fn shapes_layer(app: &TopoApp, painter: &egui::Painter, view: View) {
                 painter.circle_filled(c, 2.0, stroke.color);
             }
             Shape::Rect { min, max } => {
-                if app.sample_wrap {
+                if cx.doc.sample_wrap {
                     painter.text(
                         view.to_screen(*min) + Vec2::new(6.0, 4.0),
                         egui::Align2::LEFT_TOP,

@@ -10,7 +10,7 @@ mod tools;
 use layers::{compare_layer, contours_layer, image_layer, motion_layer, shapes_layer};
 use tools::tools_layer;
 
-use super::{fill, TopoApp};
+use super::{fill, Ctx};
 use crate::geometry::Point;
 use egui::{Color32, Pos2, Rect, Sense, Vec2};
 
@@ -29,12 +29,14 @@ pub struct CanvasState {
     moving: Option<usize>,
     /// The contour vertex the Edit tool drags.
     editing: Option<u32>,
-    /// Where the brush was last frame during a stroke, and the stroke's number.
+    /// Where the brush was last frame during a stroke.
     brush_at: Option<Point>,
+    /// The number of the last stroke (a hand drag or brush stroke): each is one undo step.
     strokes: u32,
     /// The canvas rectangle on screen last frame.
     rect: Option<Rect>,
-    fill_cache: Option<(usize, usize, fill::FillMesh)>,
+    /// The fill of the frame recording with this stamp.
+    fill_cache: Option<(u64, fill::FillMesh)>,
 }
 
 impl CanvasState {
@@ -100,13 +102,13 @@ impl View {
 
 /// The canvas, drawn in layers: image, second engine's half, contours with their fill,
 /// motion flashes, the user's shapes, then the tools (input and their previews).
-pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
+pub(super) fn canvas_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
     let (response, full_painter) =
         ui.allocate_painter(ui.available_size(), Sense::click_and_drag());
     response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Canvas, true, "Canvas"));
     // Side by side: the main engine on the left half, the second on the right, both with
     // the same view; shapes can be drawn in either half.
-    let split = app.run_b.is_some() || app.settings.compare.is_some();
+    let split = cx.doc.run_b.is_some() || cx.doc.settings.compare.is_some();
     let full = response.rect;
     let (rect, right) = if split {
         let (l, r) = full.split_left_right_at_fraction(0.5);
@@ -115,7 +117,7 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
         (full, None)
     };
     let painter = full_painter.with_clip_rect(rect);
-    let Some(image) = app.image.clone() else {
+    let Some(image) = cx.doc.image.clone() else {
         painter.text(
             rect.center(),
             egui::Align2::CENTER_CENTER,
@@ -125,18 +127,26 @@ pub fn canvas_ui(app: &mut TopoApp, ui: &mut egui::Ui) {
         );
         return;
     };
-    let view = navigate(&mut app.canvas, ui, &response, rect, right, &image, split);
-    image_layer(app, ui, &painter, view, &image);
+    let view = navigate(
+        &mut cx.view.canvas,
+        ui,
+        &response,
+        rect,
+        right,
+        &image,
+        split,
+    );
+    image_layer(cx, ui, &painter, view, &image);
     if let Some(r) = right {
-        compare_layer(app, &full_painter, &painter, view, r);
+        compare_layer(cx, &full_painter, &painter, view, r);
     }
-    contours_layer(app, &painter, view);
-    motion_layer(app, &painter, view);
-    if app.shown == 0 {
+    contours_layer(cx, &painter, view);
+    motion_layer(cx, &painter, view);
+    if cx.doc.shown == 0 {
         // The user's shapes, while they are what is on screen (frame 0).
-        shapes_layer(app, &painter, view);
+        shapes_layer(cx, &painter, view);
     }
-    tools_layer(app, ui, &response, &painter, view, &image);
+    tools_layer(cx, ui, &response, &painter, view, &image);
 }
 
 /// Fits the image on first show, then zooms about the pointer (wheel) and pans

@@ -2,57 +2,39 @@
 //! drawn is previewed.
 
 use super::View;
-use crate::app::{Command, Tool, TopoApp};
+use crate::app::{Command, Ctx, Tool};
 use crate::evolution::Shape;
 use crate::geometry::Point;
 use egui::{Color32, Pos2, Rect, Stroke};
 
 /// The tools: presses, drags and releases become commands; drawing previews.
 pub(super) fn tools_layer(
-    app: &mut TopoApp,
+    cx: &mut Ctx,
     ui: &egui::Ui,
     response: &egui::Response,
     painter: &egui::Painter,
     view: View,
     image: &crate::evolution::Field,
 ) {
-    let tool = app.settings.tool;
+    let tool = cx.view.prefs.tool;
     let zoom = view.zoom;
-    let cs = &mut app.canvas;
     let pointer = response.interact_pointer_pos().or(response.hover_pos());
     if response.drag_started_by(egui::PointerButton::Primary) {
         if let Some(p) = pointer {
-            let at = view.to_image(p);
-            cs.drag_from_in_image = Some(at);
-            cs.drag_to_in_image = Some(at);
-            if tool == Tool::Select {
-                cs.moving = hit_shape(&app.shapes, at, 6.0 / zoom as f64);
-                app.commands.push(Command::Select(cs.moving));
-            }
-            if tool == Tool::Edit {
-                // The vertex under the press (a drag starts a few pixels later) in the
-                // frame on screen.
-                let at = ui
-                    .input(|i| i.pointer.press_origin())
-                    .map_or(at, |s| view.to_image(s));
-                app.commands.push(Command::GrabVertex {
-                    at,
-                    tol: 8.0 / zoom as f64,
-                });
-            }
+            press(cx, ui, view, view.to_image(p));
         }
     }
     if tool == Tool::Brush {
-        brush(app, ui, response, painter, view, pointer);
+        brush(cx, ui, response, painter, view, pointer);
         return;
     }
-    let cs = &mut app.canvas;
+    let cs = &mut cx.view.canvas;
     if response.dragged_by(egui::PointerButton::Primary) {
         if let (Some(p), Some(_)) = (pointer, cs.drag_from_in_image) {
             cs.drag_to_in_image = Some(view.to_image(p));
-            if let (Tool::Edit, Some(v)) = (tool, cs.editing) {
-                let to = view.to_image(p);
-                app.commands.push(Command::HandMove { vertex: v, to });
+            if let (Tool::Edit, Some(vertex)) = (tool, cs.editing) {
+                let (to, stroke) = (view.to_image(p), cs.strokes);
+                cx.commands.push(Command::HandMove { vertex, to, stroke });
             }
         }
     }
@@ -79,10 +61,10 @@ pub(super) fn tools_layer(
         let start = cs.drag_from_in_image.take().or(end);
         let stop = cs.drag_to_in_image.take().or(end);
         if let (Some(a), Some(b)) = (start, stop) {
-            release(app, response, view, image, a, b);
+            release(cx, response, view, image, a, b);
         }
     }
-    let cs = &app.canvas;
+    let cs = &cx.view.canvas;
     if !cs.polygon.is_empty() {
         let mut pts: Vec<Pos2> = cs.polygon.iter().map(|&p| view.to_screen(p)).collect();
         if let Some(h) = response.hover_pos() {
@@ -92,18 +74,45 @@ pub(super) fn tools_layer(
     }
 }
 
+/// A drag starts at image point `at`: the Select tool grabs the shape there, the Edit
+/// tool the contour vertex.
+fn press(cx: &mut Ctx, ui: &egui::Ui, view: View, at: Point) {
+    let (tool, zoom) = (cx.view.prefs.tool, view.zoom);
+    let cs = &mut cx.view.canvas;
+    cs.drag_from_in_image = Some(at);
+    cs.drag_to_in_image = Some(at);
+    if tool == Tool::Select {
+        cs.moving = hit_shape(&cx.doc.shapes, at, 6.0 / zoom as f64);
+        let moving = cs.moving;
+        cx.commands.push(Command::Select(moving));
+    }
+    if tool == Tool::Edit {
+        // Each drag is one stroke (one undo step), whichever vertex leads it.
+        cs.strokes = cs.strokes.wrapping_add(1);
+        // The vertex under the press (a drag starts a few pixels later) in the frame on
+        // screen.
+        let at = ui
+            .input(|i| i.pointer.press_origin())
+            .map_or(at, |s| view.to_image(s));
+        cx.commands.push(Command::GrabVertex {
+            at,
+            tol: 8.0 / zoom as f64,
+        });
+    }
+}
+
 /// The brush: a press starts a stroke (a dab where it is), a drag moves the disc, each
 /// frame's movement one command; the disc is drawn under the pointer.
 fn brush(
-    app: &mut TopoApp,
+    cx: &mut Ctx,
     ui: &egui::Ui,
     response: &egui::Response,
     painter: &egui::Painter,
     view: View,
     pointer: Option<Pos2>,
 ) {
-    let radius = app.settings.brush_radius;
-    let cs = &mut app.canvas;
+    let radius = cx.view.prefs.brush_radius;
+    let cs = &mut cx.view.canvas;
     cs.drag_from_in_image = None;
     cs.drag_to_in_image = None;
     let pressed = response.drag_started_by(egui::PointerButton::Primary)
@@ -117,7 +126,7 @@ fn brush(
                 .input(|i| i.pointer.press_origin())
                 .map_or(p, |s| view.to_image(s));
             cs.brush_at = Some(start);
-            app.commands.push(Command::Brush {
+            cx.commands.push(Command::Brush {
                 from: start,
                 to: start,
                 radius,
@@ -125,7 +134,7 @@ fn brush(
             });
         }
         if let Some(last) = cs.brush_at.filter(|&l| dragging && l != p) {
-            app.commands.push(Command::Brush {
+            cx.commands.push(Command::Brush {
                 from: last,
                 to: p,
                 radius,
@@ -148,7 +157,7 @@ fn brush(
 
 /// A press at `a` released at `b`: what it makes with the current tool.
 fn release(
-    app: &mut TopoApp,
+    cx: &mut Ctx,
     response: &egui::Response,
     view: View,
     image: &crate::evolution::Field,
@@ -156,11 +165,11 @@ fn release(
     b: Point,
 ) {
     let zoom = view.zoom;
-    let cs = &mut app.canvas;
+    let cs = &mut cx.view.canvas;
     let inside = |p: Point| {
         p.x >= 0.0 && p.y >= 0.0 && p.x <= image.width as f64 && p.y <= image.height as f64
     };
-    let command = match app.settings.tool {
+    let command = match cx.view.prefs.tool {
         Tool::Seed if inside(a) => {
             // A click makes a seed of default radius; a drag sets the radius.
             let r = if a.dist(b) < 2.0 { 5.0 } else { a.dist(b) };
@@ -192,7 +201,7 @@ fn release(
         }
         // A click (no vertex dragged) selects the contour under it.
         Tool::Edit if cs.editing.take().is_none() || a.dist(b) == 0.0 => {
-            let id = app.shown_record().and_then(|r| contour_at(&r.rings, b));
+            let id = cx.doc.shown_record().and_then(|r| contour_at(&r.rings, b));
             Some(Command::SelectContour(id))
         }
         Tool::Select => match cs.moving.take() {
@@ -203,14 +212,14 @@ fn release(
             Some(_) => None,
             // A plain click (no drag began): select what is under it.
             None => Some(Command::Select(hit_shape(
-                &app.shapes,
+                &cx.doc.shapes,
                 b,
                 6.0 / zoom as f64,
             ))),
         },
         _ => None,
     };
-    app.commands.extend(command);
+    cx.commands.extend(command);
 }
 
 /// The innermost ring of the frame on screen around `at` (a hole inside a region wins).

@@ -23,7 +23,7 @@ mod hand;
 mod motion;
 pub mod nucleate;
 
-pub use motion::{Adaptive, Motion, Preserve, PRESERVE_GAP};
+pub use motion::{Adaptive, Motion, Preserve, Track, PRESERVE_GAP};
 
 use super::engine::{Engine, Frame};
 use super::forces::{normal_speed, ForceWeights};

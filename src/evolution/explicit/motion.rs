@@ -12,7 +12,7 @@
 
 use crate::contours::ContourSet;
 use crate::geometry::{Aabb, Point};
-use crate::topology::{MoveError, TopologyEvent};
+use crate::topology::{MoveError, TopologyEvent, TopologyPolicy};
 
 /// Gap kept between contours in the preserving engine, in grid spacings of the level.
 pub const PRESERVE_GAP: f64 = 0.3;
@@ -51,6 +51,10 @@ pub struct Adaptive;
 /// Topology stays as initialised, with a gap between fronts that meet.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Preserve;
+
+/// One object per seed that may divide: no merge, no new hole, splits carried out.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Track;
 
 impl Motion for Adaptive {
     const ADAPTS: bool = true;
@@ -103,7 +107,7 @@ impl Motion for Preserve {
         Some(PRESERVE_GAP * scale)
     }
     fn push(set: &ContourSet, v: u32, scale: f64, near: &mut Vec<u32>) -> Option<Point> {
-        Some(repulsion(set, v, 1.5 * scale, near))
+        Some(repulsion(set, v, 1.5 * scale, near, false))
     }
     fn advance(
         set: &mut ContourSet,
@@ -130,15 +134,65 @@ impl Motion for Preserve {
         let r = 2.0 * PRESERVE_GAP * scale;
         let mut near = Vec::new();
         set.vertices()
-            .filter(|&v| repulsion(set, v, r, &mut near) != Point::default())
+            .filter(|&v| repulsion(set, v, r, &mut near, false) != Point::default())
+            .count()
+    }
+}
+
+impl Motion for Track {
+    const ADAPTS: bool = false;
+    #[inline]
+    fn gap(scale: f64) -> Option<f64> {
+        Some(PRESERVE_GAP * scale)
+    }
+    fn push(set: &ContourSet, v: u32, scale: f64, near: &mut Vec<u32>) -> Option<Point> {
+        Some(repulsion(set, v, 1.5 * scale, near, true))
+    }
+    fn advance(
+        set: &mut ContourSet,
+        v: u32,
+        to: Point,
+        _: f64,
+        events: &mut Vec<TopologyEvent>,
+    ) -> f64 {
+        let from = set.position(v);
+        for f in [1.0, 0.5, 0.25] {
+            let q = from.lerp(to, f);
+            match set.move_vertex_under(v, q, TopologyPolicy::TRACKING) {
+                Ok(ev) => {
+                    events.extend(ev);
+                    return from.dist(q);
+                }
+                Err(MoveError::Degenerate(_) | MoveError::Held(_)) => continue,
+                Err(_) => return 0.0,
+            }
+        }
+        0.0
+    }
+    fn attempt(
+        set: &mut ContourSet,
+        v: u32,
+        to: Point,
+        _: f64,
+    ) -> Result<Vec<TopologyEvent>, MoveError> {
+        set.move_vertex_under(v, to, TopologyPolicy::TRACKING)
+    }
+    /// Vertices that ended within two gaps of another object.
+    fn held(set: &ContourSet, scale: f64) -> usize {
+        let r = 2.0 * PRESERVE_GAP * scale;
+        let mut near = Vec::new();
+        set.vertices()
+            .filter(|&v| repulsion(set, v, r, &mut near, true) != Point::default())
             .count()
     }
 }
 
 /// Push away from vertices of other parts within `r` (not the ring's own neighbours
-/// within four steps): seed 004's non-self-intersection force, in units of the step.
-fn repulsion(set: &ContourSet, v: u32, r: f64, near: &mut Vec<u32>) -> Point {
+/// within four steps; with `others_only`, not its own ring at all): seed 004's
+/// non-self-intersection force, in units of the step.
+fn repulsion(set: &ContourSet, v: u32, r: f64, near: &mut Vec<u32>, others_only: bool) -> Point {
     let x = set.position(v);
+    let ring = set.contour_of(v);
     let mut own = [v; 9];
     let (mut a, mut b) = (v, v);
     for i in 0..4 {
@@ -150,7 +204,7 @@ fn repulsion(set: &ContourSet, v: u32, r: f64, near: &mut Vec<u32>) -> Point {
     set.vertices_near(&Aabb { min: x, max: x }.expand(r), near);
     let mut push = Point::default();
     for &w in near.iter() {
-        if own.contains(&w) {
+        if own.contains(&w) || (others_only && set.contour_of(w) == ring) {
             continue;
         }
         let d = x - set.position(w);

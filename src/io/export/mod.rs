@@ -3,6 +3,7 @@
 //! overlay), `svg.rs`, `geojson.rs` (QuPath), `csv.rs` — over one bundle, [`Outputs`]; [`Format`] names them.
 
 mod csv;
+pub mod ctc;
 mod format;
 mod geojson;
 mod json;

@@ -38,26 +38,7 @@ impl Outputs<'_> {
     /// and QuPath read label images. `None` when there are more regions than 16 bits
     /// can label.
     pub fn labels_image(&self, tiff: bool) -> Option<Vec<u8>> {
-        let labels = self.labels();
-        let data: Vec<u16> = labels
-            .iter()
-            .map(|&l| u16::try_from(l).ok())
-            .collect::<Option<_>>()?;
-        let img = image::ImageBuffer::<image::Luma<u16>, _>::from_raw(
-            self.width as u32,
-            self.height as u32,
-            data,
-        )
-        .expect("one label per pixel");
-        let format = if tiff {
-            image::ImageFormat::Tiff
-        } else {
-            image::ImageFormat::Png
-        };
-        let mut out = std::io::Cursor::new(Vec::new());
-        img.write_to(&mut out, format)
-            .expect("encoding into memory");
-        Some(out.into_inner())
+        super::ctc::label_image(&self.labels(), self.width, self.height, tiff)
     }
 
     /// The image in gray with each region tinted in its own colour and every ring (holes
@@ -118,7 +99,7 @@ impl Outputs<'_> {
 }
 
 /// A one-pixel line from `a` to `b` (pixel coordinates), sampled every half pixel.
-fn draw_segment(rgb: &mut [u8], w: usize, h: usize, a: Point, b: Point, c: [u8; 3]) {
+pub(super) fn draw_segment(rgb: &mut [u8], w: usize, h: usize, a: Point, b: Point, c: [u8; 3]) {
     let n = (a.dist(b) * 2.0).ceil().max(1.0) as usize;
     for i in 0..=n {
         let p = a.lerp(b, i as f64 / n as f64);

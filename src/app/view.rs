@@ -1,0 +1,88 @@
+//! What is not the document: how it is looked at ([`ViewState`]: tool, selection,
+//! playback, zoom, caches of what is drawn), the preferences kept between launches
+//! ([`Prefs`]), and the status bar's messages ([`Status`]). None of it is undone.
+
+use super::command::Tool;
+use super::path_prompt::PathPrompt;
+use super::{canvas, objects};
+use std::path::PathBuf;
+
+/// Preferences kept between launches (eframe persistence). What a run does is the
+/// document's ([`super::Settings`]), reset for each image.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct Prefs {
+    /// Frames per second while playing.
+    pub speed: f32,
+    /// The canvas tool.
+    pub tool: Tool,
+    /// Fill regions on the canvas.
+    pub show_fill: bool,
+    /// Radius of the brush, image pixels.
+    pub brush_radius: f64,
+    /// The folder of the last file opened.
+    pub last_dir: Option<PathBuf>,
+}
+
+impl Default for Prefs {
+    fn default() -> Self {
+        Prefs {
+            speed: 30.0,
+            tool: Tool::Seed,
+            show_fill: true,
+            brush_radius: 8.0,
+            last_dir: None,
+        }
+    }
+}
+
+/// The smallest and largest brush radius, image pixels.
+pub const BRUSH_RADIUS: std::ops::RangeInclusive<f64> = 1.0..=100.0;
+
+/// How the document is looked at.
+#[derive(Default)]
+pub struct ViewState {
+    /// The preferences.
+    pub prefs: Prefs,
+    /// The selected shape.
+    pub selected: Option<usize>,
+    /// The contour selected with the Edit tool or in the object table (its measurements
+    /// show in the status bar, its row in the table).
+    pub selected_contour: Option<u32>,
+    /// Playback is running.
+    pub playing: bool,
+    pub(super) play_clock: f64,
+    /// The help window is open.
+    pub show_help: bool,
+    /// The built-in path field, when a file dialog gave no path.
+    pub path_prompt: Option<PathPrompt>,
+    pub(super) canvas: canvas::CanvasState,
+    /// The image as a texture, and the image and contrast window it shows.
+    pub(super) texture: Option<Texture>,
+    /// The object table's rows, measured once per frame shown.
+    pub(super) objects: objects::ObjectTable,
+    /// The window title last sent.
+    pub(super) title: String,
+}
+
+/// The image on the GPU.
+pub(super) struct Texture {
+    pub handle: egui::TextureHandle,
+    /// The image it was made from (by address) and the contrast window.
+    pub of: (usize, (f32, f32)),
+}
+
+/// What the status bar says.
+#[derive(Default)]
+pub struct Status {
+    /// The last error, shown until the next one or a success.
+    pub error: Option<super::AppError>,
+    /// The last notice (what just happened).
+    pub notice: Option<String>,
+    /// Time of the last frame step, ms.
+    pub step_ms: f64,
+    /// Time spent drawing the canvas last frame, ms.
+    pub draw_ms: f64,
+    /// The hint on keeping touching objects apart was given (it is given once).
+    pub(super) merge_hint_given: bool,
+}

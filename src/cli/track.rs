@@ -1,0 +1,215 @@
+//! `topocontour track MOVIE …`: cells tracked through a movie (see [`crate::track`]),
+//! written as the Cell Tracking Challenge result layout and, if asked, JSON, a CSV of
+//! cells per frame and overlays.
+//!
+//! The movie is read whole once before anything is written (a bad movie: one line, exit
+//! 2, no output); then frame by frame, each frame's mask written as soon as it is
+//! tracked, so memory holds a frame, not the movie (the JSON, when asked, keeps every
+//! frame's contours until the end).
+
+use super::run::{init_shapes, params_for, RunSettings};
+use super::{bad, note, Failure};
+use crate::evolution::{Modality, Polarity};
+use crate::io::export::ctc;
+use crate::io::movie::Movie;
+use crate::io::{write_atomic, OutputFiles};
+use crate::track::{TrackSettings, TrackedFrame, Tracker};
+use clap::Args;
+use std::path::{Path, PathBuf};
+
+/// The arguments of `track`.
+#[derive(Args, Debug, Clone)]
+pub struct TrackArgs {
+    /// A multi-page TIFF (one page per time point, 8 or 16 bit) or a folder of images
+    /// (frames in name order).
+    pub movie: PathBuf,
+    /// Whether cells are darker or brighter than the background.
+    #[arg(long, value_enum)]
+    pub object: Polarity,
+    /// The kind of image: phase contrast treats the bright halo as background.
+    #[arg(long, value_enum, default_value = "generic")]
+    pub modality: Modality,
+    /// A seed disk at X,Y with radius R on frame 0; repeat for more (default: automatic
+    /// seeds).
+    #[arg(long = "seed", value_name = "X,Y,R", value_parser = super::run::parse_seed)]
+    pub seeds: Vec<(f64, f64, f64)>,
+    /// A rectangle MARGIN pixels inside the border on frame 0, to shrink-wrap everything.
+    #[arg(long, value_name = "MARGIN", allow_negative_numbers = true)]
+    pub wrap: Option<f64>,
+    /// A rectangle X0,Y0,X1,Y1 on frame 0.
+    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = super::run::parse_rect)]
+    pub rect: Vec<(f64, f64, f64, f64)>,
+    /// Automatic seeds on frame 0 as well as the shapes given (the default without any).
+    #[arg(long)]
+    pub auto_seeds: bool,
+    /// Do not pick up cells that enter or appear after frame 0.
+    #[arg(long)]
+    pub no_new_cells: bool,
+    /// Radius of the local intensity statistics in pixels (default: from each frame).
+    #[arg(long, value_name = "PX")]
+    pub local_radius: Option<f64>,
+    /// Drop cells smaller than this (square pixels).
+    #[arg(long, value_name = "PX", allow_negative_numbers = true)]
+    pub min_area: Option<f64>,
+    /// How far a contour moves in before the next frame starts from it (pixels).
+    #[arg(long, value_name = "PX", default_value_t = 2.0)]
+    pub shrink: f64,
+    /// Write the Cell Tracking Challenge result: OUT/maskTTT.tif and OUT/res_track.txt.
+    #[arg(long, value_name = "OUT")]
+    pub ctc: Option<PathBuf>,
+    /// Write every frame's contours with their tracks, and the divisions, as JSON.
+    #[arg(long, value_name = "OUT")]
+    pub json: Option<PathBuf>,
+    /// Write one CSV row per cell per frame: track, frame, area, centroid, parent.
+    #[arg(long, value_name = "OUT")]
+    pub tracks_csv: Option<PathBuf>,
+    /// Write the frames with outlines and track labels as PNG: the frame --overlay-frame
+    /// names, else one PNG per frame (OUT with the frame number before its extension).
+    #[arg(long, value_name = "OUT.png")]
+    pub overlay: Option<PathBuf>,
+    /// The frame (from 0) that --overlay draws.
+    #[arg(long, value_name = "T")]
+    pub overlay_frame: Option<usize>,
+}
+
+impl TrackArgs {
+    fn run_settings(&self) -> RunSettings {
+        RunSettings {
+            seeds: self.seeds.clone(),
+            wrap: self.wrap,
+            rect: self.rect.clone(),
+            auto_seeds: true,
+            modality: self.modality,
+            local_radius: self.local_radius,
+            min_area: self.min_area,
+            ..RunSettings::new(self.object)
+        }
+    }
+}
+
+/// Where each output goes, checked before the movie is tracked.
+struct Plan {
+    files: OutputFiles,
+    ctc: Option<PathBuf>,
+    overlay: Option<PathBuf>,
+}
+
+/// Runs `track`.
+pub fn track(a: &TrackArgs) -> Result<(), Failure> {
+    if !(a.shrink.is_finite() && a.shrink >= 0.0) {
+        return Err(bad(format!(
+            "--shrink must be a number ≥ 0, got {}",
+            a.shrink
+        )));
+    }
+    let movie = Movie::open(&a.movie).map_err(|e| bad(e.to_string()))?;
+    if let Some(t) = a.overlay_frame.filter(|&t| t >= movie.len()) {
+        return Err(bad(format!(
+            "--overlay-frame {t}: the movie has frames 0 to {}",
+            movie.len() - 1
+        )));
+    }
+    let (w, h) = movie.size();
+    let run = a.run_settings();
+    let init = init_shapes(&run, w, h)?;
+    let mut settings = TrackSettings::new(params_for(&run)?);
+    settings.shrink = a.shrink;
+    settings.auto_seeds = a.auto_seeds || init.is_empty();
+    settings.new_cells = !a.no_new_cells;
+    let plan = prepare(a)?;
+    let mut tracker = Tracker::new(settings, init);
+    let mut kept: Vec<TrackedFrame> = Vec::new();
+    let mut csv = String::from(ctc::CSV_HEADER);
+    for (t, image) in movie.frames().map_err(|e| bad(e.to_string()))?.enumerate() {
+        let image = image.map_err(|e| bad(e.to_string()))?;
+        let frame = tracker.step(&image).map_err(|e| bad(e.to_string()))?;
+        if let Some(dir) = &plan.ctc {
+            let bytes = ctc::label_image(tracker.labels(), w, h, true)
+                .ok_or_else(|| bad("more than 65,535 tracks for 16-bit label images"))?;
+            write(&dir.join(ctc::mask_name(t, movie.len())), &bytes)?;
+        }
+        if let Some(out) = &plan.overlay {
+            if a.overlay_frame.is_none_or(|f| f == t) {
+                let path = match a.overlay_frame {
+                    Some(_) => out.clone(),
+                    None => numbered(out, t, movie.len()),
+                };
+                write(&path, &ctc::png(&ctc::overlay_rgb(&image, &frame), w, h))?;
+            }
+        }
+        if a.tracks_csv.is_some() {
+            csv.push_str(&ctc::csv_rows(&frame, tracker.lineage()));
+        }
+        if a.json.is_some() {
+            kept.push(frame);
+        }
+    }
+    let lineage = tracker.lineage();
+    if let Some(dir) = &plan.ctc {
+        write(&dir.join("res_track.txt"), lineage.ctc_text().as_bytes())?;
+    }
+    let mut contents = Vec::new();
+    if a.json.is_some() {
+        contents.push(ctc::json(movie.name(), &kept, lineage).into_bytes());
+    }
+    if a.tracks_csv.is_some() {
+        contents.push(csv.into_bytes());
+    }
+    plan.files
+        .commit(contents)
+        .map_err(|e| bad(e.to_string()))?;
+    let divisions = lineage.tracks().iter().filter(|t| t.parent != 0).count() / 2;
+    note(&format!(
+        "tracked {} frames of {}: {} tracks, {} divisions",
+        movie.len(),
+        movie.name(),
+        lineage.tracks().len(),
+        divisions
+    ));
+    Ok(())
+}
+
+/// Checks the outputs: the CTC folder is made if missing (it must not be a file), the
+/// JSON and CSV get their temporaries.
+fn prepare(a: &TrackArgs) -> Result<Plan, Failure> {
+    if a.ctc.is_none() && a.json.is_none() && a.tracks_csv.is_none() && a.overlay.is_none() {
+        return Err(bad(
+            "no output: give --ctc OUT, --json OUT, --tracks-csv OUT or --overlay OUT.png",
+        ));
+    }
+    let files: Vec<&Path> = [&a.json, &a.tracks_csv]
+        .into_iter()
+        .filter_map(|p| p.as_deref())
+        .collect();
+    let files = OutputFiles::prepare(Some(&a.movie), &files).map_err(|e| bad(e.to_string()))?;
+    if let Some(dir) = &a.ctc {
+        if dir.exists() && !dir.is_dir() {
+            return Err(bad(format!(
+                "--ctc {}: not a folder (the result is a folder of masks)",
+                dir.display()
+            )));
+        }
+        std::fs::create_dir_all(dir)
+            .map_err(|e| bad(format!("cannot make the folder {}: {e}", dir.display())))?;
+    }
+    Ok(Plan {
+        files,
+        ctc: a.ctc.clone(),
+        overlay: a.overlay.clone(),
+    })
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
+    write_atomic(path, bytes).map_err(|e| bad(e.to_string()))
+}
+
+/// `out` with frame `t` before its extension: `a.png` → `a.007.png`.
+fn numbered(out: &Path, t: usize, frames: usize) -> PathBuf {
+    let digits = frames.saturating_sub(1).to_string().len().max(3);
+    let stem = out
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("overlay");
+    let ext = out.extension().and_then(|s| s.to_str()).unwrap_or("png");
+    out.with_file_name(format!("{stem}.{t:0digits$}.{ext}"))
+}

@@ -1,0 +1,169 @@
+//! Tracking outputs: the Cell Tracking Challenge result layout (one 16-bit label TIFF per
+//! frame, `maskTTT.tif` with at least three digits, and `res_track.txt`, see
+//! [`crate::track::Lineage::ctc_text`]), one CSV row per cell per frame, the JSON of every
+//! frame's contours with their tracks and the divisions, and overlays coloured by track
+//! with each track's label written beside its cell.
+
+use super::raster::draw_segment;
+use super::PALETTE;
+use crate::evolution::Field;
+use crate::track::{Lineage, TrackedFrame};
+
+/// The mask file name of frame `t` in a movie of `frames` frames: `mask000.tif`, with
+/// more digits only when the movie needs them.
+pub fn mask_name(t: usize, frames: usize) -> String {
+    let digits = frames.saturating_sub(1).to_string().len().max(3);
+    format!("mask{t:0digits$}.tif")
+}
+
+/// A label raster as a 16-bit TIFF (`tiff`) or PNG; `None` beyond 65,535 labels.
+pub fn label_image(labels: &[u32], width: usize, height: usize, tiff: bool) -> Option<Vec<u8>> {
+    let data: Vec<u16> = labels
+        .iter()
+        .map(|&l| u16::try_from(l).ok())
+        .collect::<Option<_>>()?;
+    let img =
+        image::ImageBuffer::<image::Luma<u16>, _>::from_raw(width as u32, height as u32, data)
+            .expect("one label per pixel");
+    let format = if tiff {
+        image::ImageFormat::Tiff
+    } else {
+        image::ImageFormat::Png
+    };
+    let mut out = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut out, format)
+        .expect("encoding into memory");
+    Some(out.into_inner())
+}
+
+/// The CSV header of [`csv_rows`].
+pub const CSV_HEADER: &str = "track,frame,area_px,centroid_x,centroid_y,parent\n";
+
+/// One row per cell of `frame`: track, frame, area, centroid, parent track (0: none).
+pub fn csv_rows(frame: &TrackedFrame, lineage: &Lineage) -> String {
+    frame
+        .objects
+        .iter()
+        .map(|o| {
+            let parent = lineage.get(o.track).map_or(0, |t| t.parent);
+            format!(
+                "{},{},{:.2},{:.3},{:.3},{}\n",
+                o.track, frame.frame, o.area, o.centroid.x, o.centroid.y, parent
+            )
+        })
+        .collect()
+}
+
+/// The JSON of a tracked movie: per frame the cells (track, area, centroid, outline),
+/// the divisions, and the tracks.
+pub fn json(movie: &str, frames: &[TrackedFrame], lineage: &Lineage) -> String {
+    let divisions: Vec<_> = frames.iter().flat_map(|f| f.divisions.iter()).collect();
+    let frames: Vec<serde_json::Value> = frames
+        .iter()
+        .map(|f| {
+            serde_json::json!({
+                "frame": f.frame,
+                "objects": f.objects.iter().map(|o| serde_json::json!({
+                    "track": o.track,
+                    "area": o.area,
+                    "centroid": [o.centroid.x, o.centroid.y],
+                    "ring": o.ring.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+                })).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    let doc = serde_json::json!({
+        "movie": movie,
+        "frames": frames,
+        "divisions": divisions,
+        "tracks": lineage.tracks(),
+    });
+    serde_json::to_string_pretty(&doc).expect("JSON of plain values")
+}
+
+/// The colour of track `label`, the same in every frame.
+fn colour(label: u32) -> [u8; 3] {
+    PALETTE[(label as usize).wrapping_mul(5) % PALETTE.len()]
+}
+
+/// Frame `image` in gray with each cell's outline in its track's colour and the track's
+/// label beside it, as RGB bytes.
+pub fn overlay_rgb(image: &Field, frame: &TrackedFrame) -> Vec<u8> {
+    let (w, h) = (image.width, image.height);
+    let mut rgb: Vec<u8> = image
+        .data
+        .iter()
+        .flat_map(|&v| [(v.clamp(0.0, 1.0) * 255.0) as u8; 3])
+        .collect();
+    for o in &frame.objects {
+        let c = colour(o.track);
+        for i in 0..o.ring.len() {
+            draw_segment(&mut rgb, w, h, o.ring[i], o.ring[(i + 1) % o.ring.len()], c);
+        }
+        draw_number(&mut rgb, w, h, o.centroid, o.track, c);
+    }
+    rgb
+}
+
+/// RGB bytes as PNG.
+pub fn png(rgb: &[u8], width: usize, height: usize) -> Vec<u8> {
+    let mut out = Vec::new();
+    let enc = image::codecs::png::PngEncoder::new(&mut out);
+    image::ImageEncoder::write_image(
+        enc,
+        rgb,
+        width as u32,
+        height as u32,
+        image::ExtendedColorType::Rgb8,
+    )
+    .expect("PNG encoding into memory");
+    out
+}
+
+/// 3×5 digit glyphs, one row per 3 bits.
+const DIGITS: [[u8; 5]; 10] = [
+    [7, 5, 5, 5, 7],
+    [2, 6, 2, 2, 7],
+    [7, 1, 7, 4, 7],
+    [7, 1, 3, 1, 7],
+    [5, 5, 7, 1, 1],
+    [7, 4, 7, 1, 7],
+    [7, 4, 7, 5, 7],
+    [7, 1, 1, 2, 2],
+    [7, 5, 7, 5, 7],
+    [7, 5, 7, 1, 7],
+];
+
+/// Writes `n` centred on `at`, glyphs scaled twice, in `c` on a black box.
+fn draw_number(rgb: &mut [u8], w: usize, h: usize, at: crate::geometry::Point, n: u32, c: [u8; 3]) {
+    let text = n.to_string();
+    let (gw, gh, s) = (4usize, 6usize, 2usize);
+    let x0 = at.x as isize - (text.len() * gw * s) as isize / 2;
+    let y0 = at.y as isize - (gh * s) as isize / 2;
+    for (k, ch) in text.bytes().enumerate() {
+        let glyph = DIGITS[(ch - b'0') as usize];
+        for gy in 0..gh * s {
+            for gx in 0..gw * s {
+                let (x, y) = (x0 + (k * gw * s + gx) as isize, y0 + gy as isize);
+                if x < 0 || y < 0 || x >= w as isize || y >= h as isize {
+                    continue;
+                }
+                let (col, row) = (gx / s, gy / s);
+                let on = row < 5 && col < 3 && glyph[row] >> (2 - col) & 1 == 1;
+                let i = 3 * (y as usize * w + x as usize);
+                rgb[i..i + 3].copy_from_slice(&if on { c } else { [0; 3] });
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mask_names_have_at_least_three_digits() {
+        assert_eq!(mask_name(7, 65), "mask007.tif");
+        assert_eq!(mask_name(7, 2000), "mask0007.tif");
+    }
+}

@@ -1,0 +1,282 @@
+//! A movie: the pages of a multi-page TIFF (8 or 16 bit, one page per time point), or the
+//! images of a folder in name order.
+//!
+//! [`Movie::open`] reads every frame once before anything else happens, so a bad movie
+//! (one frame, frames of different sizes, a frame that does not decode) is refused with
+//! one error before any output exists; [`Movie::frames`] then reads them again one at a
+//! time, so memory holds one frame, never the movie.
+//!
+//! Each frame is normalised on its own: its 0.1 % and 99.9 % intensity quantiles map to 0
+//! and 1 (clamped). A 16-bit movie may use a narrow range (97–276 of 65,535), which read
+//! as is would leave every contrast below the engine's noise floor; a few hot pixels must
+//! not decide the scale, hence quantiles rather than the extremes; and per frame, because
+//! bleaching dims a fluorescence movie over time.
+
+use super::load::{load_image, open_regular, LoadError};
+use super::tiff_info::decode_current;
+use crate::evolution::Field;
+use std::path::{Path, PathBuf};
+
+/// Frames read at most (a malformed chain of TIFF pages must not loop).
+const MAX_FRAMES: usize = 100_000;
+
+/// Share of pixels below the value that maps to 0 (and above the one that maps to 1).
+const CLIP_SHARE: f64 = 0.001;
+
+/// Why a movie cannot be read.
+#[derive(Debug, thiserror::Error)]
+pub enum MovieError {
+    /// A frame could not be read or decoded.
+    #[error("{0}")]
+    Load(#[from] LoadError),
+    /// Fewer than two frames.
+    #[error("{path} holds {frames} frame(s): a movie needs at least two (pages of a TIFF, or images in a folder)")]
+    TooShort {
+        /// The movie.
+        path: String,
+        /// Frames found.
+        frames: usize,
+    },
+    /// A frame whose size differs from the first.
+    #[error("{path}: frame {frame} is {width}×{height} but frame 1 is {first_width}×{first_height}; every frame of a movie must have the same size")]
+    SizeDiffers {
+        /// The movie.
+        path: String,
+        /// The frame, from 1.
+        frame: usize,
+        /// Its width.
+        width: usize,
+        /// Its height.
+        height: usize,
+        /// The first frame's width.
+        first_width: usize,
+        /// The first frame's height.
+        first_height: usize,
+    },
+}
+
+/// Where the frames come from.
+#[derive(Clone, Debug)]
+enum Source {
+    /// Pages of one TIFF file.
+    Stack(PathBuf),
+    /// Image files, in name order.
+    Files(Vec<PathBuf>),
+}
+
+/// A checked movie: at least two frames, all of one size, all decodable.
+#[derive(Clone, Debug)]
+pub struct Movie {
+    source: Source,
+    name: String,
+    frames: usize,
+    width: usize,
+    height: usize,
+}
+
+impl Movie {
+    /// Opens a multi-page TIFF or a folder of images and reads every frame once.
+    pub fn open(path: &Path) -> Result<Movie, MovieError> {
+        let name = path.display().to_string();
+        let source = if path.is_dir() {
+            Source::Files(image_files(path)?)
+        } else {
+            Source::Stack(path.to_path_buf())
+        };
+        let mut movie = Movie {
+            source,
+            name,
+            frames: 0,
+            width: 0,
+            height: 0,
+        };
+        let mut frames = 0;
+        for (t, frame) in movie.frames()?.enumerate() {
+            let f = frame?;
+            if t == 0 {
+                (movie.width, movie.height) = (f.width, f.height);
+            } else if (f.width, f.height) != (movie.width, movie.height) {
+                return Err(MovieError::SizeDiffers {
+                    path: movie.name.clone(),
+                    frame: t + 1,
+                    width: f.width,
+                    height: f.height,
+                    first_width: movie.width,
+                    first_height: movie.height,
+                });
+            }
+            frames += 1;
+        }
+        if frames < 2 {
+            return Err(MovieError::TooShort {
+                path: movie.name,
+                frames,
+            });
+        }
+        movie.frames = frames;
+        Ok(movie)
+    }
+
+    /// Number of frames.
+    pub fn len(&self) -> usize {
+        self.frames
+    }
+
+    /// Always false: a movie has at least two frames.
+    pub fn is_empty(&self) -> bool {
+        self.frames == 0
+    }
+
+    /// Width and height of every frame.
+    pub fn size(&self) -> (usize, usize) {
+        (self.width, self.height)
+    }
+
+    /// The movie's name as given (for messages).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The frames in order, each normalised ([`normalise`]), read one at a time.
+    pub fn frames(&self) -> Result<Frames, MovieError> {
+        let reader = match &self.source {
+            Source::Stack(path) => {
+                let io = |source| LoadError::Io {
+                    path: self.name.clone(),
+                    source,
+                };
+                let file = open_regular(path).map_err(io)?;
+                if !file.metadata().map_err(io)?.is_file() {
+                    return Err(LoadError::NotAFile {
+                        path: self.name.clone(),
+                    }
+                    .into());
+                }
+                let dec = tiff::decoder::Decoder::new(std::io::BufReader::new(file))
+                    .map_err(|e| decode_error(&self.name, e.to_string()))?;
+                Reader::Stack(Box::new(dec))
+            }
+            Source::Files(files) => Reader::Files(files.clone()),
+        };
+        Ok(Frames {
+            reader,
+            name: self.name.clone(),
+            next: 0,
+        })
+    }
+}
+
+fn decode_error(name: &str, reason: String) -> MovieError {
+    LoadError::Decode {
+        path: name.to_string(),
+        reason,
+    }
+    .into()
+}
+
+/// The image files of a folder (PNG, JPEG, TIFF by extension), in name order.
+fn image_files(dir: &Path) -> Result<Vec<PathBuf>, MovieError> {
+    let io = |source| LoadError::Io {
+        path: dir.display().to_string(),
+        source,
+    };
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(io)?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.is_file()
+                && p.extension().and_then(|e| e.to_str()).is_some_and(|e| {
+                    ["png", "jpg", "jpeg", "tif", "tiff"]
+                        .iter()
+                        .any(|x| e.eq_ignore_ascii_case(x))
+                })
+        })
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
+enum Reader {
+    Stack(Box<tiff::decoder::Decoder<std::io::BufReader<std::fs::File>>>),
+    Files(Vec<PathBuf>),
+}
+
+/// The frames of a [`Movie`], read one at a time.
+pub struct Frames {
+    reader: Reader,
+    name: String,
+    next: usize,
+}
+
+impl Iterator for Frames {
+    type Item = Result<Field, MovieError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        let t = self.next;
+        if t >= MAX_FRAMES {
+            return None;
+        }
+        let frame = match &mut self.reader {
+            Reader::Stack(dec) => {
+                if t > 0 {
+                    if !dec.more_images() {
+                        return None;
+                    }
+                    if let Err(e) = dec.next_image() {
+                        self.next = MAX_FRAMES;
+                        return Some(Err(decode_error(
+                            &self.name,
+                            format!("page {}: {e}", t + 1),
+                        )));
+                    }
+                }
+                decode_current(dec, &self.name, t).map_err(MovieError::from)
+            }
+            Reader::Files(files) => load_image(files.get(t)?).map_err(MovieError::from),
+        };
+        self.next = if frame.is_ok() { t + 1 } else { MAX_FRAMES };
+        Some(frame.map(|mut f| {
+            normalise(&mut f);
+            f
+        }))
+    }
+}
+
+/// Maps the 0.1 % and 99.9 % quantiles of `f` to 0 and 1, clamping beyond; a flat frame
+/// stays as it is.
+pub fn normalise(f: &mut Field) {
+    let n = f.data.len();
+    if n == 0 {
+        return;
+    }
+    let mut v = f.data.clone();
+    let k = ((n as f64 * CLIP_SHARE) as usize).min(n - 1);
+    let lo = *v.select_nth_unstable_by(k, f32::total_cmp).1;
+    let hi = *v.select_nth_unstable_by(n - 1 - k, f32::total_cmp).1;
+    if hi <= lo {
+        return;
+    }
+    let scale = 1.0 / (hi - lo);
+    for x in &mut f.data {
+        *x = ((*x - lo) * scale).clamp(0.0, 1.0);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_narrow_sixteen_bit_range_fills_zero_to_one() {
+        let data: Vec<f32> = (0..10_000)
+            .map(|i| (97 + i % 180) as f32 / 65535.0)
+            .collect();
+        let mut f = Field::new(100, 100, data);
+        normalise(&mut f);
+        let (lo, hi) = f
+            .data
+            .iter()
+            .fold((1.0f32, 0.0f32), |(a, b), &x| (a.min(x), b.max(x)));
+        assert_eq!((lo, hi), (0.0, 1.0));
+    }
+}

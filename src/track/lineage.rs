@@ -1,0 +1,99 @@
+//! The lineage: one record per track (label, first and last frame, parent), as the Cell
+//! Tracking Challenge's `res_track.txt` lists them (`L B E P`, one line per track).
+
+/// One track: a cell from the frame it appeared (or was born) to the frame it was last
+/// seen (or divided after).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct Track {
+    /// The track's label (1, 2, …), also its value in the label images.
+    pub label: u32,
+    /// First frame (0-based).
+    pub first: usize,
+    /// Last frame.
+    pub last: usize,
+    /// The track it divided from (0: none).
+    pub parent: u32,
+}
+
+/// A division: `parent`'s last frame was `frame − 1`, its two children start at `frame`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct Division {
+    /// The first frame of the children.
+    pub frame: usize,
+    /// The track that divided.
+    pub parent: u32,
+    /// The two children.
+    pub children: [u32; 2],
+}
+
+impl Division {
+    /// The division in words, as the event log shows it.
+    pub fn describe(&self) -> String {
+        format!(
+            "cell {} divided into {} and {} at frame {}",
+            self.parent, self.children[0], self.children[1], self.frame
+        )
+    }
+}
+
+/// The tracks of a movie so far.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Lineage {
+    tracks: Vec<Track>,
+}
+
+impl Lineage {
+    /// A new track starting at `frame`; returns its label.
+    pub fn start(&mut self, frame: usize, parent: u32) -> u32 {
+        let label = self.tracks.len() as u32 + 1;
+        self.tracks.push(Track {
+            label,
+            first: frame,
+            last: frame,
+            parent,
+        });
+        label
+    }
+
+    /// Track `label` is seen in `frame`.
+    pub fn extend(&mut self, label: u32, frame: usize) {
+        if let Some(t) = self.tracks.get_mut(label as usize - 1) {
+            t.last = t.last.max(frame);
+        }
+    }
+
+    /// All tracks, by label.
+    pub fn tracks(&self) -> &[Track] {
+        &self.tracks
+    }
+
+    /// The track of `label`.
+    pub fn get(&self, label: u32) -> Option<&Track> {
+        self.tracks.get((label as usize).checked_sub(1)?)
+    }
+
+    /// `res_track.txt` of the Cell Tracking Challenge: `L B E P` per track.
+    pub fn ctc_text(&self) -> String {
+        self.tracks
+            .iter()
+            .map(|t| format!("{} {} {} {}\n", t.label, t.first, t.last, t.parent))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ctc_lines_list_label_first_last_parent() {
+        let mut l = Lineage::default();
+        let a = l.start(0, 0);
+        l.extend(a, 4);
+        let b = l.start(5, a);
+        let c = l.start(5, a);
+        l.extend(b, 9);
+        assert_eq!(l.ctc_text(), "1 0 4 0\n2 5 9 1\n3 5 5 1\n");
+        assert_eq!(l.get(c).unwrap().parent, 1);
+    }
+}
