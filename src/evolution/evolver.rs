@@ -19,7 +19,7 @@ use super::explicit::Explicit;
 use super::forces::ForceWeights;
 use super::implicit::{Implicit, ImplicitEngine};
 use super::initial::initial_set;
-use super::params::{check_params, check_shapes, EvolveError, Mode, Params};
+use super::params::{check_params, check_params_for, check_shapes, EvolveError, Mode, Params};
 use super::schedule::Schedule;
 use crate::contours::{ContourId, ContourSet};
 use crate::geometry::{Aabb, Point};
@@ -61,6 +61,7 @@ impl Evolver {
             return Err(EvolveError::EmptyInit);
         }
         check_shapes(init, image.width, image.height)?;
+        check_params_for(&params, image.width, image.height)?;
         let model = Arc::new(ImageModel::prepare(image, &params.model_params(), init));
         Self::with_image(model, init, params)
     }
