@@ -102,6 +102,10 @@ pub(super) const MODES: &[(&str, &str)] = &[
         "implicit",
         "as preserve, computed on a pixel grid (fast marching) instead of moving the polygon",
     ),
+    (
+        "track",
+        "one object per seed that may divide: contours never merge or make holes, but one that pinches splits",
+    ),
 ];
 
 /// The broad phases in the user's words.
