@@ -282,6 +282,15 @@ pub(super) fn evolve(path: &Path, a: &RunSettings) -> Result<(Job, JobRun), Fail
             info.pages
         ));
     }
+    if let Some(p) = &job.pixel_size {
+        let area = p.size * p.size * (image.width * image.height) as f64;
+        if !(area.is_finite() && p.size * p.size > 0.0) {
+            return Err(bad(format!(
+                "--pixel-size {} puts the image's area out of range; give it in another --unit",
+                p.size
+            )));
+        }
+    }
     job.shapes = init_shapes(a, image.width, image.height)?;
     let run = job.run_on(image, info).map_err(|e| bad(e.to_string()))?;
     Ok((job, run))
