@@ -8,9 +8,14 @@ use topocontour::cli::{batch, bench, note, replay, segment, track, Cli, Command,
 fn open_app(image: Option<std::path::PathBuf>) -> Result<(), Failure> {
     if let Some(p) = &image {
         if !p.is_file() {
+            let why = if p.exists() {
+                "not a regular file"
+            } else {
+                "no such file"
+            };
             return Err(Failure {
                 code: 2,
-                message: format!("cannot open {}: no such file", p.display()),
+                message: format!("cannot open {}: {why}", p.display()),
             });
         }
     }

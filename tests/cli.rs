@@ -550,7 +550,7 @@ fn batch_writes_one_json_per_image_and_a_summary() {
         assert!(outer > 0, "{name}");
         let mine = rows
             .iter()
-            .filter(|r| r.starts_with(&format!("\"{name}\",")))
+            .filter(|r| r.starts_with(&format!("\"{name}.png\",")))
             .count();
         assert_eq!(mine, outer, "{name}: one summary row per object");
         assert!(out.join(format!("{name}.labels.tif")).is_file());

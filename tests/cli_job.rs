@@ -2,50 +2,13 @@
 //! that survive a move, labels numbered as the CSV ids, a clean `--help`, the summary
 //! line. Each test makes its own small images.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_topocontour"))
-}
+use common::{bin, disks_png, read_json, run_ok, s};
+use std::path::PathBuf;
 
-/// A fresh folder of this test's own.
 fn workdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("topocontour-job-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn run_ok(cmd: &mut Command) -> Output {
-    let out = cmd.output().unwrap();
-    assert!(
-        out.status.success(),
-        "{:?}: {}",
-        cmd.get_args().collect::<Vec<_>>(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-/// A `w`×`h` gray PNG: dark disks (centre x, y, radius) on a bright background.
-fn disks_png(path: &Path, w: u32, h: u32, disks: &[(f64, f64, f64)]) {
-    let img = image::GrayImage::from_fn(w, h, |x, y| {
-        let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
-        let inside = disks
-            .iter()
-            .any(|&(cx, cy, r)| (px - cx).hypot(py - cy) <= r);
-        image::Luma([if inside { 40 } else { 210 }])
-    });
-    img.save(path).unwrap();
-}
-
-fn read_json(path: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+    common::workdir("job", name)
 }
 
 /// Centroids of the outer contours of a segment JSON.

@@ -52,7 +52,8 @@ pub(super) fn objects_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
                 return;
             };
             let rows = cx.view.objects.rows(rec);
-            ui.label(format!("{} objects in frame {}", rows.len(), rec.index))
+            let noun = if rows.len() == 1 { "object" } else { "objects" };
+            ui.label(format!("{} {noun} in frame {}", rows.len(), rec.index))
                 .on_hover_text("regions of the frame on screen: area and perimeter in pixels, circularity 4πA/P² (1 for a disk)");
             let selected = cx.view.selected_contour;
             let scroll = cx.view.objects.scroll_to(selected);

@@ -148,7 +148,7 @@ impl TopoApp {
             .any(|e| matches!(e, TopologyEvent::Merge { .. }))
         {
             self.status.notice = Some(format!(
-                "frame {}: two seeds' contours touched and merged into one object. To keep touching objects apart, choose Preserve (each seed stays its own object)",
+                "frame {}: two seeds merged into one object; Preserve keeps touching objects apart",
                 rec.index
             ));
             self.status.merge_hint_given = true;

@@ -1,18 +1,20 @@
 //! `topocontour batch INPUT_DIR --out OUTPUT_DIR …`: every image of a folder with the same
 //! settings, in parallel (rayon), with a progress bar on a terminal (indicatif).
 //!
-//! Each image gets its outputs named after it (`cells.tif` → `cells.json`, …), written
-//! all or none as `segment` writes them; a failing image is reported on its own line and
+//! Each image gets its outputs named after it (`cells.tif` → `cells.json`, …; the whole
+//! file name where stems collide, see [`output_stems`]), written all or none as
+//! `segment` writes them; a failing image is reported on its own line and
 //! the others go on. `summary.csv` gets one row per object of every image that
 //! succeeded. Ctrl-C stops starting new images; those already running finish and are
 //! written, the summary lists them, and the exit code is 1. Images are the folder's
 //! regular files ending in .png, .jpg, .jpeg, .tif or .tiff (not its subfolders), in
-//! name order.
+//! name order. The output folder may be the input folder only when no output is an
+//! image (mask, labels, overlay), which the next run would segment.
 
 use super::run::{evolve, RunSettings};
 use super::segment::{counted, write_outputs};
 use super::{bad, note, Failure, Format};
-use crate::io::folder::{file_name, list_images, stem, summary_rows, SUMMARY_HEADER};
+use crate::io::folder::{file_name, list_images, output_stems, summary_rows, SUMMARY_HEADER};
 use crate::io::{OutputFiles, Outputs};
 use clap::Args;
 use rayon::prelude::*;
@@ -51,8 +53,18 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
             a.input.display()
         )));
     }
+    let stems = output_stems(&images).map_err(bad)?;
+    if let Some(f) = a
+        .formats
+        .iter()
+        .enumerate()
+        .find_map(|(i, f)| a.formats[..i].contains(f).then_some(f))
+    {
+        return Err(bad(format!("--formats names {} twice", f.name())));
+    }
     std::fs::create_dir_all(&a.out)
         .map_err(|e| bad(format!("cannot create {}: {e}", a.out.display())))?;
+    refuse_out_in_input(a)?;
     // The summary is prepared like every output: checked before any work.
     let summary_path = a.out.join("summary.csv");
     let summary = OutputFiles::prepare(None, &[&summary_path]).map_err(|e| bad(e.to_string()))?;
@@ -80,11 +92,12 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
     let results: Vec<(PathBuf, Option<ImageResult>)> = pool.install(|| {
         images
             .par_iter()
-            .map(|img| {
+            .zip(&stems)
+            .map(|(img, stem)| {
                 if stop.load(Ordering::SeqCst) {
                     return (img.clone(), None);
                 }
-                let r = one_image(img, a);
+                let r = one_image(img, stem, a);
                 bar.inc(1);
                 (img.clone(), Some(r))
             })
@@ -132,13 +145,30 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-/// Segments one image and writes its outputs; returns its summary rows.
-fn one_image(img: &Path, a: &BatchArgs) -> ImageResult {
-    let stem = stem(img);
+/// Refuses an output folder that is the input folder when an output is an image: the
+/// next run would segment it as an input.
+fn refuse_out_in_input(a: &BatchArgs) -> Result<(), Failure> {
+    let images = [Format::Mask, Format::Labels, Format::Overlay];
+    let same = match (a.out.canonicalize(), a.input.canonicalize()) {
+        (Ok(o), Ok(i)) => o == i,
+        _ => false,
+    };
+    match a.formats.iter().find(|f| images.contains(f)) {
+        Some(f) if same => Err(bad(format!(
+            "--out is the input folder, and the {} outputs are images a later run would read as inputs: choose another folder",
+            f.name()
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// Segments one image and writes its outputs, named after `stem`; returns its summary
+/// rows.
+fn one_image(img: &Path, stem: &str, a: &BatchArgs) -> ImageResult {
     let paths: Vec<PathBuf> = a
         .formats
         .iter()
-        .map(|f| a.out.join(f.file_name(&stem)))
+        .map(|f| a.out.join(f.file_name(stem)))
         .collect();
     let refs: Vec<&Path> = paths.iter().map(PathBuf::as_path).collect();
     let files = OutputFiles::prepare(Some(img), &refs).map_err(|e| bad(e.to_string()))?;
@@ -148,5 +178,5 @@ fn one_image(img: &Path, a: &BatchArgs) -> ImageResult {
     let out = Outputs::of(ev, ev.contours(), &name).with_pixel_size(run.pixel.clone());
     let wanted: Vec<(Format, &Path)> = a.formats.iter().copied().zip(refs).collect();
     write_outputs(files, &wanted, &out, image, None)?;
-    Ok(summary_rows(&stem, &out, image))
+    Ok(summary_rows(&name, &out, image))
 }

@@ -69,6 +69,21 @@ fn bad(message: impl Into<String>) -> Failure {
 }
 
 /// Writes a line to stderr; a full or closed stderr loses the line, never the run.
+/// Control characters (from file names: escape sequences, newlines) are shown escaped,
+/// never sent to the terminal raw.
 pub fn note(line: &str) {
-    let _ = writeln!(std::io::stderr().lock(), "topocontour: {line}");
+    let _ = writeln!(std::io::stderr().lock(), "topocontour: {}", printable(line));
+}
+
+/// `text` with every control character written as `\u{..}`.
+fn printable(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_unicode().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }

@@ -102,6 +102,10 @@ pub(super) const MODES: &[(&str, &str)] = &[
         "implicit",
         "as preserve, computed on a pixel grid (fast marching) instead of moving the polygon",
     ),
+    (
+        "track",
+        "one object per seed that may divide: contours never merge or make holes, but one that pinches splits",
+    ),
 ];
 
 /// The broad phases in the user's words.
@@ -277,6 +281,15 @@ pub(super) fn evolve(path: &Path, a: &RunSettings) -> Result<(Job, JobRun), Fail
             path.display(),
             info.pages
         ));
+    }
+    if let Some(p) = &job.pixel_size {
+        let area = p.size * p.size * (image.width * image.height) as f64;
+        if !(area.is_finite() && p.size * p.size > 0.0) {
+            return Err(bad(format!(
+                "--pixel-size {} puts the image's area out of range; give it in another --unit",
+                p.size
+            )));
+        }
     }
     job.shapes = init_shapes(a, image.width, image.height)?;
     let run = job.run_on(image, info).map_err(|e| bad(e.to_string()))?;

@@ -193,7 +193,12 @@ pub fn replay(a: &ReplayArgs) -> Result<Evolver, Failure> {
         .image
         .clone()
         .unwrap_or_else(|| session.image_path(&a.session));
-    let files = OutputFiles::prepare(Some(&image_path), &paths).map_err(|e| bad(e.to_string()))?;
+    // The session file is an input too: never written over (also through a hard link).
+    let inputs = [
+        (image_path.as_path(), "input image"),
+        (a.session.as_path(), "session file"),
+    ];
+    let files = OutputFiles::prepare_for(&inputs, &paths).map_err(|e| bad(e.to_string()))?;
     let run = session
         .replay(&a.session, Some(&image_path))
         .map_err(|e| bad(e.to_string()))?;

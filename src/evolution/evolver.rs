@@ -17,7 +17,7 @@ use super::engine::{Engine, Engines, Frame};
 use super::explicit::Explicit;
 use super::forces::ForceWeights;
 use super::implicit::{Implicit, ImplicitEngine};
-use super::params::{check_params, check_shapes, EvolveError, Mode, Params};
+use super::params::{check_params, check_params_for, check_shapes, EvolveError, Mode, Params};
 use super::schedule::Schedule;
 use crate::contours::{ContourId, ContourSet};
 use crate::geometry::{Aabb, Point};
@@ -129,6 +129,7 @@ impl Evolver {
             return Err(EvolveError::EmptyInit);
         }
         check_shapes(init, image.width, image.height)?;
+        check_params_for(&params, image.width, image.height)?;
         // Phase contrast: the halo reads as background, clipped to the level of the band a
         // wrap shows.
         let band = (params.modality == Modality::PhaseContrast)

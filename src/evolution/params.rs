@@ -3,6 +3,7 @@
 
 use super::forces::ForceWeights;
 use crate::contours::BroadPhaseKind;
+use crate::geometry::Point;
 use crate::image::{Modality, Polarity};
 use crate::shape::Shape;
 
@@ -117,7 +118,7 @@ pub enum EvolveError {
     #[error("a shape of the initialisation is not usable: {0}")]
     BadShape(String),
     /// A parameter out of its range.
-    #[error("parameter {name} must be {what}, got {value}")]
+    #[error("parameter {name} must be {what}, got {}", shown(*.value))]
     BadParameter {
         /// The parameter's name as the command line spells it.
         name: &'static str,
@@ -137,13 +138,28 @@ pub(crate) fn check_params(p: &Params) -> Result<(), EvolveError> {
         ("stretch", w.stretch),
         ("bend", w.bend),
     ] {
-        if !(value.is_finite() && value >= 0.0) {
+        // The app's sliders reach 2; far larger weights only overflow the speeds.
+        if !(value.is_finite() && (0.0..=MAX_WEIGHT).contains(&value)) {
             return Err(EvolveError::BadParameter {
                 name,
-                what: "a finite number ≥ 0",
+                what: "a number in [0, 100]",
                 value,
             });
         }
+    }
+    if !(p.converged_share.is_finite() && (0.0..=1.0).contains(&p.converged_share)) {
+        return Err(EvolveError::BadParameter {
+            name: "converged_share",
+            what: "in [0, 1]",
+            value: p.converged_share,
+        });
+    }
+    if !(8..=1 << 16).contains(&p.coarsest_side) {
+        return Err(EvolveError::BadParameter {
+            name: "coarsest_side",
+            what: "in [8, 65536]",
+            value: p.coarsest_side as f64,
+        });
     }
     if !(p.step.is_finite() && p.step > 0.0 && p.step <= 2.0) {
         return Err(EvolveError::BadParameter {
@@ -162,10 +178,44 @@ pub(crate) fn check_params(p: &Params) -> Result<(), EvolveError> {
     Ok(())
 }
 
-/// Shapes with finite coordinates and disks no larger than the image's diagonal (a ring
-/// has a vertex every pixel or so: a huge radius would be a huge ring, clipped after).
+/// Corners of a polygon accepted (a user clicks a few dozen).
+pub const MAX_CORNERS: usize = 1 << 20;
+
+/// A number as a message shows it: plain when short, in e-notation when huge or tiny.
+fn shown(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-4..1e6).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// Largest force weight accepted.
+const MAX_WEIGHT: f64 = 100.0;
+
+/// The parameters that depend on the image: a local radius of at least a pixel and at
+/// most the image's diagonal (its box filters allocate by the radius).
+pub(crate) fn check_params_for(p: &Params, width: usize, height: usize) -> Result<(), EvolveError> {
+    let diagonal = (width as f64).hypot(height as f64);
+    if let Some(r) = p.local_radius {
+        if !(r >= 1.0 && r <= diagonal) {
+            return Err(EvolveError::BadParameter {
+                name: "local_radius",
+                what: "in [1, the image's diagonal]",
+                value: r,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Shapes with finite coordinates no farther from the image than its diagonal, disks no
+/// larger than the diagonal, and polygons of at most [`MAX_CORNERS`] corners (a ring has
+/// a vertex every pixel or so: a huge shape would be a huge ring, clipped after).
 pub(crate) fn check_shapes(init: &[Shape], width: usize, height: usize) -> Result<(), EvolveError> {
     let diagonal = (width as f64).hypot(height as f64);
+    let near = |v: f64, side: usize| v >= -diagonal && v <= side as f64 + diagonal;
+    let near_image = |q: &Point| near(q.x, width) && near(q.y, height);
     for s in init {
         let finite = match s {
             Shape::Disk { center, radius } => {
@@ -182,6 +232,23 @@ pub(crate) fn check_shapes(init: &[Shape], width: usize, height: usize) -> Resul
         if !finite {
             return Err(EvolveError::BadShape(format!(
                 "{s:?} has a coordinate that is not finite"
+            )));
+        }
+    }
+    for s in init {
+        let (corners, near) = match s {
+            Shape::Disk { center, .. } => (1, near_image(center)),
+            Shape::Rect { min, max } => (2, near_image(min) && near_image(max)),
+            Shape::Polygon(pts) => (pts.len(), pts.iter().all(near_image)),
+        };
+        if corners > MAX_CORNERS {
+            return Err(EvolveError::BadShape(format!(
+                "a polygon of {corners} corners (at most {MAX_CORNERS})"
+            )));
+        }
+        if !near {
+            return Err(EvolveError::BadShape(format!(
+                "a shape reaches farther than the image's diagonal ({diagonal:.0} px) from the {width}×{height} image"
             )));
         }
     }

@@ -1,15 +1,18 @@
 //! Output files written all or nothing, that can never destroy an input or a special file.
 //!
-//! [`OutputFiles::prepare`] runs before any work: it refuses an output that names the
-//! input (also through `..`, a symlink or a hard link), the same file twice, an existing
-//! path that is not a regular file (a FIFO, a device such as `/dev/null` or `/dev/full`,
-//! a socket, a folder), and a folder it cannot write into. It creates one temporary file
+//! [`OutputFiles::prepare`] runs before any work: it refuses an output that names an
+//! input of the run (the image, a session file; also through `..`, a symlink or a hard
+//! link), the same file twice, an existing path that is not a regular file (a FIFO, a
+//! device such as `/dev/null` or `/dev/full`, a socket, a folder), a name longer than the
+//! file system allows (the rename at the end would fail after other outputs were
+//! replaced), and a folder it cannot write into. It creates one temporary file
 //! per output right away, exclusively (`O_EXCL`) with an unpredictable short name in the
 //! output's folder, so a planted symlink cannot redirect the write and a long output name
 //! cannot make the temporary's name too long. [`OutputFiles::commit`] writes every
 //! temporary and only then renames them into place; a failure before the renames removes
 //! every temporary and leaves no output at all. A kill during the run leaves at most a
-//! hidden temporary, never a half-written output.
+//! hidden temporary, never a half-written output. A replaced file keeps its permissions
+//! (a private 0600 result stays private).
 //!
 //! The temporaries are not fsynced before the rename: readers, and later runs, see the
 //! old file or the whole new one either way; only a power cut right after the rename
@@ -36,9 +39,12 @@ pub enum OutputError {
     /// The path exists and is not a regular file.
     #[error("cannot write {0}: it exists and is not a regular file")]
     NotRegular(PathBuf),
-    /// The path is the input image.
-    #[error("cannot write {0}: it is the input image")]
-    IsInput(PathBuf),
+    /// The path is an input of the run (what: "input image", "session file").
+    #[error("cannot write {0}: it is the {1}")]
+    IsInput(PathBuf, &'static str),
+    /// The file name or the whole path is longer than the file system takes.
+    #[error("cannot write {0}: the name is too long for the file system")]
+    NameTooLong(PathBuf),
     /// Two outputs name one file.
     #[error("{0} is given to two outputs")]
     Twice(PathBuf),
@@ -79,12 +85,26 @@ pub struct OutputFiles {
 }
 
 impl OutputFiles {
-    /// Checks `outputs` against each other and against `input` (the file the run reads,
+    /// Checks `outputs` against each other and against `input` (the image the run reads,
     /// if any) and creates their temporaries. Nothing visible is created or changed.
     pub fn prepare(input: Option<&Path>, outputs: &[&Path]) -> Result<Self, OutputError> {
-        let input_id = input
-            .and_then(|p| std::fs::metadata(p).ok())
-            .map(|m| identity_of_existing(&m));
+        let inputs: Vec<(&Path, &'static str)> =
+            input.map(|p| (p, "input image")).into_iter().collect();
+        Self::prepare_for(&inputs, outputs)
+    }
+
+    /// [`OutputFiles::prepare`] for a run with several inputs, each with what it is
+    /// ("input image", "session file") for the refusal.
+    pub fn prepare_for(
+        inputs: &[(&Path, &'static str)],
+        outputs: &[&Path],
+    ) -> Result<Self, OutputError> {
+        let input_ids: Vec<(Identity, &'static str)> = inputs
+            .iter()
+            .filter_map(|&(p, what)| {
+                Some((identity_of_existing(&std::fs::metadata(p).ok()?), what))
+            })
+            .collect();
         let mut seen: Vec<Identity> = Vec::new();
         let mut files = Vec::new();
         for &path in outputs {
@@ -102,6 +122,9 @@ impl OutputFiles {
                     dir: dir.into(),
                 });
             }
+            if name.len() > name_max(dir) || path.as_os_str().len() >= PATH_MAX {
+                return Err(OutputError::NameTooLong(path.into()));
+            }
             let id = match std::fs::metadata(path) {
                 Ok(meta) if !meta.is_file() => return Err(OutputError::NotRegular(path.into())),
                 Ok(meta) => identity_of_existing(&meta),
@@ -113,8 +136,8 @@ impl OutputFiles {
                     Identity::New(canonical.join(name))
                 }
             };
-            if input_id.as_ref() == Some(&id) {
-                return Err(OutputError::IsInput(path.into()));
+            if let Some(&(_, what)) = input_ids.iter().find(|(i, _)| *i == id) {
+                return Err(OutputError::IsInput(path.into(), what));
             }
             if seen.contains(&id) {
                 return Err(OutputError::Twice(path.into()));
@@ -147,6 +170,10 @@ impl OutputFiles {
             written.push((path, tmp));
         }
         for (path, tmp) in written {
+            // The replaced file's permissions, not the umask's (a 0600 file stays 0600).
+            if let Ok(meta) = std::fs::metadata(&path) {
+                let _ = std::fs::set_permissions(tmp.path(), meta.permissions());
+            }
             tmp.persist(&path).map_err(|e| OutputError::Io {
                 path,
                 source: e.error,
@@ -154,6 +181,26 @@ impl OutputFiles {
         }
         Ok(())
     }
+}
+
+/// The longest path the kernel takes (Linux's PATH_MAX, with its final NUL).
+const PATH_MAX: usize = 4096;
+
+/// The longest file name the file system of `dir` takes, in bytes.
+fn name_max(dir: &Path) -> usize {
+    #[cfg(unix)]
+    {
+        use std::os::unix::ffi::OsStrExt;
+        if let Ok(c) = std::ffi::CString::new(dir.as_os_str().as_bytes()) {
+            // SAFETY: a valid NUL-terminated path; pathconf only reads it.
+            let n = unsafe { libc::pathconf(c.as_ptr(), libc::_PC_NAME_MAX) };
+            if n > 0 {
+                return n as usize;
+            }
+        }
+    }
+    let _ = dir;
+    255
 }
 
 /// A temporary file in `dir`, created exclusively with a random name; mode 0666 before

@@ -44,6 +44,39 @@ pub fn stem(path: &Path) -> String {
         .unwrap_or_default()
 }
 
+/// The stem each image's outputs are named after (`NAME.json`, …): its file stem, or its
+/// whole file name where stems would collide (`a.png` and `a.tif` give `a.png.json` and
+/// `a.tif.json`; an image called `summary` would meet `summary.csv`). Names are compared
+/// ignoring case, as many file systems do (exFAT, macOS, Windows): `a.png` and `a.PNG`
+/// are refused, naming both.
+pub fn output_stems(images: &[PathBuf]) -> Result<Vec<String>, String> {
+    let key = |s: &str| s.to_lowercase();
+    let stems: Vec<String> = images.iter().map(|p| stem(p)).collect();
+    let chosen: Vec<String> = images
+        .iter()
+        .zip(&stems)
+        .map(|(p, st)| {
+            let clash =
+                key(st) == "summary" || stems.iter().filter(|o| key(o) == key(st)).count() > 1;
+            if clash {
+                file_name(p)
+            } else {
+                st.clone()
+            }
+        })
+        .collect();
+    for (i, a) in chosen.iter().enumerate() {
+        if let Some(j) = chosen[..i].iter().position(|b| key(a) == key(b)) {
+            return Err(format!(
+                "{} and {} would get the same output names ({a}.*); rename one",
+                file_name(&images[j]),
+                file_name(&images[i])
+            ));
+        }
+    }
+    Ok(chosen)
+}
+
 /// One CSV row per region: the measurements of `Outputs::csv` and the mean intensity
 /// (0–1 of the image's full scale) over the region's pixels.
 pub fn summary_rows(name: &str, out: &Outputs, image: &Field) -> Vec<String> {
@@ -102,6 +135,27 @@ impl FolderJob {
         files
             .commit(vec![out.json().into_bytes(), out.csv().into_bytes()])
             .map_err(|e| e.to_string())?;
-        Ok(summary_rows(&stem, &out, &run.image))
+        Ok(summary_rows(&name, &out, &run.image))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn paths(names: &[&str]) -> Vec<PathBuf> {
+        names.iter().map(PathBuf::from).collect()
+    }
+
+    #[test]
+    fn output_stems_are_unique_or_refused() {
+        let got = output_stems(&paths(&["a.png", "a.tif", "b.png", "summary.png"])).unwrap();
+        assert_eq!(got, ["a.png", "a.tif", "b", "summary.png"]);
+        let err = output_stems(&paths(&["a.png", "a.PNG"])).unwrap_err();
+        assert!(err.contains("a.png and a.PNG"), "{err}");
+        assert_eq!(
+            output_stems(&paths(&["x.png", "y.png"])).unwrap(),
+            ["x", "y"]
+        );
     }
 }

@@ -121,31 +121,52 @@ pub fn load_image_page(path: &Path, page: usize) -> Result<(Field, ImageInfo), L
     Ok((field, ImageInfo { pages, pixel_size }))
 }
 
-/// The bytes of a regular file no larger than [`MAX_FILE_BYTES`].
-fn read_file(path: &Path) -> Result<Vec<u8>, LoadError> {
-    let name = path.display().to_string();
-    let io = |source| LoadError::Io {
-        path: name.clone(),
-        source,
-    };
-    let file = open_regular(path).map_err(io)?;
-    let meta = file.metadata().map_err(io)?;
+/// Why a file was not read.
+#[derive(Debug)]
+pub(crate) enum Unread {
+    /// Opening or reading failed.
+    Io(std::io::Error),
+    /// A FIFO, device, socket or folder.
+    NotAFile,
+    /// Larger than the limit (its size).
+    TooLarge(u64),
+}
+
+/// The bytes of a regular file of at most `limit` bytes: opened without blocking (a FIFO
+/// is refused, never waited on), its type checked on the opened file, its size before
+/// reading, and never more than `limit` bytes read (a file growing meanwhile).
+pub(crate) fn read_regular(path: &Path, limit: u64) -> Result<Vec<u8>, Unread> {
+    let file = open_regular(path).map_err(Unread::Io)?;
+    let meta = file.metadata().map_err(Unread::Io)?;
     if !meta.is_file() {
-        return Err(LoadError::NotAFile { path: name });
+        return Err(Unread::NotAFile);
     }
-    if meta.len() > MAX_FILE_BYTES {
-        return Err(LoadError::FileTooLarge {
-            path: name,
-            bytes: meta.len(),
-        });
+    if meta.len() > limit {
+        return Err(Unread::TooLarge(meta.len()));
     }
     let mut bytes = Vec::with_capacity(meta.len() as usize);
-    std::io::Read::read_to_end(
-        &mut std::io::Read::take(file, MAX_FILE_BYTES + 1),
-        &mut bytes,
-    )
-    .map_err(io)?;
+    std::io::Read::read_to_end(&mut std::io::Read::take(file, limit + 1), &mut bytes)
+        .map_err(Unread::Io)?;
+    if bytes.len() as u64 > limit {
+        return Err(Unread::TooLarge(bytes.len() as u64));
+    }
     Ok(bytes)
+}
+
+/// The bytes of a regular file no larger than [`MAX_FILE_BYTES`].
+fn read_file(path: &Path) -> Result<Vec<u8>, LoadError> {
+    let path_name = path.display().to_string();
+    read_regular(path, MAX_FILE_BYTES).map_err(|e| match e {
+        Unread::Io(source) => LoadError::Io {
+            path: path_name,
+            source,
+        },
+        Unread::NotAFile => LoadError::NotAFile { path: path_name },
+        Unread::TooLarge(bytes) => LoadError::FileTooLarge {
+            path: path_name,
+            bytes,
+        },
+    })
 }
 
 /// Opens without blocking: on a FIFO a plain open waits for a writer.

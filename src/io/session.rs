@@ -29,6 +29,8 @@ use std::path::{Path, PathBuf};
 pub const FORMAT: &str = "topocontour-session";
 /// The version this build writes and reads.
 pub const VERSION: u32 = 1;
+/// The largest session file read (about half a million edits).
+pub const MAX_SESSION_BYTES: u64 = 64 << 20;
 
 /// The image a session was made on.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -204,8 +206,16 @@ impl Session {
 
     /// Reads a session file.
     pub fn read(path: &Path) -> Result<Self, SessionError> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| SessionError::Format(path.into(), e.to_string()))?;
+        use crate::io::load::{read_regular, Unread};
+        let refused = |why: String| SessionError::Format(path.into(), why);
+        let bytes = read_regular(path, MAX_SESSION_BYTES).map_err(|e| match e {
+            Unread::Io(e) => refused(e.to_string()),
+            Unread::NotAFile => refused("not a regular file".into()),
+            Unread::TooLarge(n) => refused(format!(
+                "{n} bytes, more than any session ({MAX_SESSION_BYTES})"
+            )),
+        })?;
+        let text = String::from_utf8(bytes).map_err(|_| refused("not UTF-8 text".into()))?;
         let s: Session = serde_json::from_str(&text)
             .map_err(|e| SessionError::Format(path.into(), e.to_string()))?;
         if s.format != FORMAT || s.version != VERSION {

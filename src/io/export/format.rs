@@ -50,6 +50,20 @@ impl Format {
         Format::Roi,
     ];
 
+    /// The format's name on the command line (`--formats json,labels`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Json => "json",
+            Format::Mask => "mask",
+            Format::Svg => "svg",
+            Format::Geojson => "geojson",
+            Format::Csv => "csv",
+            Format::Labels => "labels",
+            Format::Overlay => "overlay",
+            Format::Roi => "roi",
+        }
+    }
+
     /// The file extension (without the dot) of this format's default file name.
     pub fn extension(self) -> &'static str {
         match self {

@@ -59,9 +59,15 @@ impl<'a> Outputs<'a> {
         }
     }
 
-    /// The same outputs with a known pixel size (or none).
+    /// The same outputs with a known pixel size (or none; or none when it is too large or
+    /// small to calibrate this image's area).
     pub fn with_pixel_size(mut self, pixel: Option<PixelSize>) -> Self {
-        self.pixel = pixel;
+        // A size whose square is not a positive finite number (a TIFF resolution of
+        // 1e-320, say) calibrates nothing: no `inf` or 0 in the CSV.
+        self.pixel = pixel.filter(|p| {
+            let area = p.size * p.size * (self.width * self.height) as f64;
+            area.is_finite() && p.size * p.size > 0.0
+        });
         self
     }
 }
@@ -87,9 +93,14 @@ pub fn object_number(k: usize) -> u32 {
     k as u32 + 1
 }
 
-/// `text` as one CSV field: in double quotes, inner quotes doubled.
+/// `text` (a name, a unit: anything from a user or a file) as one CSV field: in double
+/// quotes, inner quotes doubled, and a leading `=`, `+`, `-`, `@`, tab or carriage return
+/// behind a `'`, so a spreadsheet shows it as text instead of running it as a formula
+/// (OWASP, "CSV Injection").
 pub fn csv_quoted(text: &str) -> String {
-    format!("\"{}\"", text.replace('"', "\"\""))
+    let formula = text.starts_with(['=', '+', '-', '@', '\t', '\r']);
+    let guard = if formula { "'" } else { "" };
+    format!("\"{guard}{}\"", text.replace('"', "\"\""))
 }
 
 /// Distinct colours for neighbouring labels (Okabe–Ito, readable by colour-blind users).

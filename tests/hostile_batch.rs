@@ -1,0 +1,98 @@
+//! Batch folders that must never lose an output or an input (issue 24: 3, 4, 17): each
+//! case asserts the exit code, one line on stderr, the inputs byte-identical and no file
+//! left behind.
+#![cfg(unix)]
+
+mod common;
+
+use common::{bin, disks_png, names, refused, run_ok, s};
+use std::path::{Path, PathBuf};
+
+/// A folder `in` holding one small image under each of `names`.
+fn inputs(test: &str, names: &[&str]) -> (PathBuf, PathBuf) {
+    let d = common::workdir("batch", test);
+    let input = d.join("in");
+    std::fs::create_dir_all(&input).unwrap();
+    for (k, n) in names.iter().enumerate() {
+        let r = 6.0 + k as f64;
+        disks_png(&input.join(n), 48, 48, &[(24.0, 24.0, r)]);
+    }
+    (d, input)
+}
+
+fn batch(input: &Path, out: &Path, formats: &str) -> std::process::Command {
+    let mut c = bin();
+    c.args(["batch", s(input), "--out", s(out), "--wrap", "3"])
+        .args(["--object", "dark", "--formats", formats]);
+    c
+}
+
+/// Issue 24.3: images whose stems collide get their whole file name as stem; the summary
+/// names each by its file name; `summary.png` keeps its own CSV apart from summary.csv.
+#[test]
+fn colliding_stems_get_unique_outputs() {
+    let (d, input) = inputs("stems", &["a.png", "a.tif", "summary.png"]);
+    let out = d.join("out");
+    run_ok(&mut batch(&input, &out, "json,csv"));
+    assert_eq!(
+        names(&out),
+        [
+            "a.png.csv",
+            "a.png.json",
+            "a.tif.csv",
+            "a.tif.json",
+            "summary.csv",
+            "summary.png.csv",
+            "summary.png.json"
+        ]
+    );
+    let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    for name in ["a.png", "a.tif", "summary.png"] {
+        let rows = summary
+            .lines()
+            .filter(|l| l.starts_with(&format!("\"{name}\",")));
+        assert_eq!(rows.count(), 1, "{name} in\n{summary}");
+    }
+    let own = common::read_json(&out.join("a.tif.json"));
+    assert_eq!(own["image"], "a.tif");
+}
+
+/// Issue 24.3: names that differ only in case are refused up front (many file systems
+/// would make them one output), before any output exists.
+#[test]
+fn names_equal_but_for_case_are_refused() {
+    let (d, input) = inputs("case", &["a.png", "a.PNG"]);
+    let out = d.join("out");
+    refused(&mut batch(&input, &out, "json"), "a.PNG and a.png");
+    assert!(!out.exists() || names(&out).is_empty());
+}
+
+/// Issue 24.4: `--out` = the input folder is refused when an output is an image (the
+/// next run would segment it); with only JSON it is fine and touches no input.
+#[test]
+fn out_in_the_input_folder_never_feeds_back() {
+    let (_, input) = inputs("feedback", &["x.png", "y.png"]);
+    let before: Vec<Vec<u8>> = ["x.png", "y.png"]
+        .iter()
+        .map(|n| std::fs::read(input.join(n)).unwrap())
+        .collect();
+    refused(&mut batch(&input, &input, "json,mask"), "input folder");
+    assert_eq!(names(&input), ["x.png", "y.png"]);
+    run_ok(&mut batch(&input, &input, "json"));
+    assert_eq!(
+        names(&input),
+        ["summary.csv", "x.json", "x.png", "y.json", "y.png"]
+    );
+    for (n, b) in ["x.png", "y.png"].iter().zip(&before) {
+        assert_eq!(&std::fs::read(input.join(n)).unwrap(), b, "{n}");
+    }
+}
+
+/// Issue 24.17: a format named twice is one refusal, not one error per image.
+#[test]
+fn a_format_named_twice_is_one_refusal() {
+    let (d, input) = inputs("twice", &["a.png", "b.png", "c.png"]);
+    let out = d.join("out");
+    refused(&mut batch(&input, &out, "json,json"), "json twice");
+    assert!(!out.exists());
+}
