@@ -29,8 +29,14 @@ fn frame(t: usize) -> Field {
             43.0 + 85.0 * j as f64 + 1.2 * t as f64 * a.sin(),
         );
         let r = 9.0 + 3.0 * (k as f64 * 0.618_034).fract();
-        let (x0, x1) = ((c.x - r - 1.0).max(0.0) as usize, ((c.x + r + 1.0) as usize).min(SIDE - 1));
-        let (y0, y1) = ((c.y - r - 1.0).max(0.0) as usize, ((c.y + r + 1.0) as usize).min(SIDE - 1));
+        let (x0, x1) = (
+            (c.x - r - 1.0).max(0.0) as usize,
+            ((c.x + r + 1.0) as usize).min(SIDE - 1),
+        );
+        let (y0, y1) = (
+            (c.y - r - 1.0).max(0.0) as usize,
+            ((c.y + r + 1.0) as usize).min(SIDE - 1),
+        );
         for y in y0..=y1 {
             for x in x0..=x1 {
                 if Point::new(x as f64 + 0.5, y as f64 + 0.5).dist(c) <= r {
