@@ -17,6 +17,8 @@
 
 use crate::evolution::{find_seeds, Edit, EvolveError, Evolver, Field, Params, Polarity, Shape};
 use crate::io::{load_image_page, ImageInfo, LoadError, PixelSize};
+use crate::learn::guide::{self, Guide};
+use crate::learn::{StrokeError, Strokes};
 use std::path::PathBuf;
 
 /// Where a run stops.
@@ -48,6 +50,10 @@ pub struct Job {
     pub stop: Stop,
     /// The physical size of a pixel; `None`: what the file records, if anything.
     pub pixel_size: Option<PixelSize>,
+    /// Strokes painted on the image (0 none, 1 background, 2 object, 3 boundary): a
+    /// pixel classifier learns them and the run reads its probabilities
+    /// ([`crate::learn::guide`]).
+    pub strokes: Option<PathBuf>,
 }
 
 /// What a job produced.
@@ -83,6 +89,9 @@ pub enum JobError {
     /// The evolution refused the shapes, parameters or an edit.
     #[error(transparent)]
     Evolve(#[from] EvolveError),
+    /// The strokes cannot be used.
+    #[error(transparent)]
+    Strokes(#[from] StrokeError),
 }
 
 fn polarity_word(p: Polarity) -> &'static str {
@@ -137,6 +146,7 @@ impl Job {
             edits: Vec::new(),
             stop: Stop::Finished,
             pixel_size: None,
+            strokes: None,
         }
     }
 
@@ -157,8 +167,18 @@ impl Job {
     /// starts from: the job's, then the seeds found in this image when asked for.
     pub fn start(&self, image: &Field) -> Result<(Evolver, Vec<Shape>), JobError> {
         let mut shapes = self.shapes.clone();
+        let guide = match &self.strokes {
+            Some(path) => {
+                let strokes = Strokes::read(path, image.width, image.height)?;
+                Some(Guide::train(image, &strokes, &self.params))
+            }
+            None => None,
+        };
         if self.auto_seeds {
-            let found = find_seeds(image, self.params.polarity, self.params.modality);
+            let found = match &guide {
+                Some(g) => guide::seeds(&g.probabilities),
+                None => find_seeds(image, self.params.polarity, self.params.modality),
+            };
             if found.is_empty() && shapes.is_empty() {
                 return Err(JobError::NoSeeds {
                     path: self.image.clone(),
@@ -167,7 +187,10 @@ impl Job {
             }
             shapes.extend(found);
         }
-        let ev = Evolver::new(image, &shapes, self.params.clone())?;
+        let ev = match &guide {
+            Some(g) => Evolver::new(&g.field, &shapes, g.params.clone())?,
+            None => Evolver::new(image, &shapes, self.params.clone())?,
+        };
         Ok((ev, shapes))
     }
 

@@ -13,6 +13,8 @@
 //! - [`topology`]: motion regions, Directives 1 and 2, topology events;
 //! - [`image`]: the field and pyramid, the intensity model, local decision levels,
 //!   automatic seeds;
+//! - [`learn`]: a pixel classifier (random forest on multiscale features) trained from
+//!   a user's strokes, whose probabilities the contours can follow;
 //! - [`evolution`]: the engines that move contours under image forces.
 //!
 //! [`shape`] holds the shapes a user draws to start a run.
@@ -37,6 +39,7 @@ pub mod geometry;
 pub mod image;
 pub mod io;
 pub mod job;
+pub mod learn;
 pub mod shape;
 pub mod topology;
 pub mod track;

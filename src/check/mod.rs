@@ -10,18 +10,21 @@
 //! still matches (so nothing changed outside the motion region either).
 //!
 //! Files: `rng`, `oracle`, `generators` (ring sets and moves), `fixtures` (the
-//! benchmarks'), `drivers` (property-test and fuzz loops).
+//! benchmarks'), `drivers` (property-test and fuzz loops), `learn_images` (the pixel
+//! classifier's test images and strokes).
 //!
 //! Set `TOPO_TRACE=1` to print the rings before and after a failing move.
 
 mod drivers;
 mod fixtures;
 mod generators;
+mod learn_images;
 mod oracle;
 mod rng;
 
 pub use drivers::*;
 pub use fixtures::*;
 pub use generators::*;
+pub use learn_images::*;
 pub use oracle::*;
 pub use rng::*;

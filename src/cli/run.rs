@@ -9,7 +9,7 @@ use crate::io::PixelSize;
 use crate::job::{Job, JobRun};
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// How to initialise and evolve: the flags `segment` and `batch` share.
 #[derive(Args, Debug, Clone)]
@@ -24,6 +24,11 @@ pub struct RunSettings {
     /// threshold); adds to any other shapes.
     #[arg(long)]
     pub auto_seeds: bool,
+    /// Strokes painted on the image, a PNG of its size (0 none, 1 background, 2 object,
+    /// 3 boundary between touching objects): a pixel classifier learns them and the
+    /// contours follow its probabilities (--auto-seeds then seeds its objects).
+    #[arg(long, value_name = "STROKES.png")]
+    pub train: Option<PathBuf>,
     /// A rectangle X0,Y0,X1,Y1.
     #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_rect)]
     pub rect: Vec<(f64, f64, f64, f64)>,
@@ -72,6 +77,7 @@ impl RunSettings {
             seeds: Vec::new(),
             wrap: None,
             auto_seeds: false,
+            train: None,
             rect: Vec::new(),
             object,
             mode: Mode::Adaptive,
@@ -266,6 +272,7 @@ pub fn job_for(path: &Path, a: &RunSettings) -> Result<Job, Failure> {
         page,
         auto_seeds: a.auto_seeds,
         pixel_size,
+        strokes: a.train.clone(),
         ..Job::new(path, Vec::new(), params_for(a)?)
     })
 }

@@ -97,6 +97,12 @@ pub(super) fn write_outputs(
 
 /// Runs `segment` and writes its outputs; returns the finished evolver.
 pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
+    if a.save_session.is_some() && a.run.train.is_some() {
+        // A session replays from the image alone; it does not hold strokes yet.
+        return Err(bad(
+            "--save-session does not record --train strokes yet; run without one of them",
+        ));
+    }
     // Every output is checked, and its temporary created, before any work.
     let wanted = a.out.list();
     let mut paths: Vec<&Path> = wanted.iter().map(|&(_, p)| p).collect();

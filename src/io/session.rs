@@ -258,6 +258,7 @@ impl Session {
                 Stop::AtFrame(self.frames)
             },
             pixel_size: self.pixel_size.clone(),
+            strokes: None,
         }
     }
 

@@ -1,0 +1,401 @@
+//! A random forest (Breiman 2001) of CART trees with Gini splits, bootstrap samples and
+//! √F features tried per split, as scikit-learn's `RandomForestClassifier` and ilastik's
+//! vigra forest grow them; seeded, so one training set always gives one forest.
+//!
+//! Why our own and not smartcore's or linfa-ensemble's: the contours need class
+//! *probabilities* on every pixel, and both crates' forests vote labels only; and
+//! predicting a 512² image with 49 features must take tens of milliseconds, where their
+//! row-by-row traversal of boxed trees takes seconds (docs/decisions.md, `cargo bench
+//! --bench learn`). Two choices make ours fast:
+//! - training bins each feature into at most [`BINS`] quantile intervals of the
+//!   training values (as LightGBM and scikit-learn's histogram forests do), so a split
+//!   search is a histogram per feature rather than a sort; thresholds are the midpoints
+//!   between training values, as CART's;
+//! - prediction walks a chunk of pixels through one tree at a time, eight neighbouring
+//!   pixels in lockstep, every leaf looping to itself until all eight have arrived: the
+//!   walks' loads overlap, the one branch is predictable (neighbours mostly end in
+//!   leaves of one depth), and the chunk's features stay in cache across the trees.
+//!
+//! tests/learn_forest.rs checks the predictions against smartcore's forest trained on
+//! the same data.
+
+/// Largest number of bins a feature is cut into for the split search.
+pub const BINS: usize = 64;
+
+/// Pixels predicted together (their features gathered into one buffer).
+const CHUNK: usize = 256;
+
+/// How a forest is grown.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ForestParams {
+    /// Number of trees.
+    pub trees: usize,
+    /// Largest depth of a tree (the root is depth 0).
+    pub max_depth: usize,
+    /// Seed of the bootstrap and feature draws.
+    pub seed: u64,
+}
+
+impl Default for ForestParams {
+    /// scikit-learn's trainable segmentation as `shared/tools/peer.py` runs it: 50 trees
+    /// of depth at most 10.
+    fn default() -> Self {
+        ForestParams {
+            trees: 50,
+            max_depth: 10,
+            seed: 0,
+        }
+    }
+}
+
+/// A node: a split (`feature`, `threshold`: values ≤ it go `left`), or a leaf whose
+/// children are itself and whose threshold lets every value through.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Node {
+    /// The feature compared.
+    pub feature: u32,
+    /// Values ≤ this go left.
+    pub threshold: f32,
+    /// The left child.
+    pub left: u32,
+    /// The right child.
+    pub right: u32,
+}
+
+/// A trained forest.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Forest {
+    /// Number of classes (indices 0..classes).
+    pub classes: usize,
+    /// Number of features a sample has.
+    pub features: usize,
+    /// All trees' nodes.
+    pub nodes: Vec<Node>,
+    /// Per tree, its root and its depth.
+    pub roots: Vec<(u32, u32)>,
+    /// Per node, where its class distribution starts in `leaf_values` (leaves only).
+    pub leaf_of: Vec<u32>,
+    /// Class distributions of the leaves, `classes` values each.
+    pub leaf_values: Vec<f32>,
+}
+
+/// SplitMix64: small, seeded, and the same on every platform.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n as u64) as usize
+    }
+}
+
+/// The training data binned: per feature its thresholds and each sample's bin.
+struct Binned {
+    /// Per feature, the bin upper edges (values ≤ edge[b] are in bins 0..=b).
+    edges: Vec<Vec<f32>>,
+    /// Feature-major: bins[f * n + i].
+    bins: Vec<u8>,
+    n: usize,
+}
+
+fn bin_features(x: &[f32], n: usize, nf: usize) -> Binned {
+    let mut edges = Vec::with_capacity(nf);
+    let mut bins = vec![0u8; nf * n];
+    let mut column: Vec<f32> = Vec::with_capacity(n);
+    for f in 0..nf {
+        column.clear();
+        column.extend((0..n).map(|i| x[i * nf + f]));
+        let mut sorted = column.clone();
+        sorted.sort_by(f32::total_cmp);
+        // Cut between distinct values at even ranks: at most BINS − 1 edges.
+        let mut e: Vec<f32> = Vec::new();
+        for k in 1..BINS {
+            let i = k * n / BINS;
+            if i == 0 || i >= n {
+                continue;
+            }
+            // The first change of value at or after rank i.
+            let Some(j) = (i..n).find(|&j| sorted[j] > sorted[j - 1]) else {
+                break;
+            };
+            let mid = 0.5 * (sorted[j - 1] + sorted[j]);
+            if e.last().is_none_or(|&last| mid > last) {
+                e.push(mid);
+            }
+        }
+        for (i, &v) in column.iter().enumerate() {
+            bins[f * n + i] = e.partition_point(|&edge| edge < v) as u8;
+        }
+        edges.push(e);
+    }
+    Binned { edges, bins, n }
+}
+
+/// Gini impurity times weight: w − Σ c²/w.
+#[inline]
+fn gini_mass(counts: &[f64]) -> f64 {
+    let w: f64 = counts.iter().sum();
+    if w <= 0.0 {
+        0.0
+    } else {
+        w - counts.iter().map(|c| c * c).sum::<f64>() / w
+    }
+}
+
+struct Grower<'a> {
+    data: &'a Binned,
+    y: &'a [u8],
+    weight: &'a [f64],
+    classes: usize,
+    mtry: usize,
+    max_depth: usize,
+    rng: Rng,
+    nodes: Vec<Node>,
+    leaf_of: Vec<u32>,
+    leaf_values: Vec<f32>,
+    depth: u32,
+}
+
+impl Grower<'_> {
+    fn counts(&self, idx: &[u32]) -> Vec<f64> {
+        let mut c = vec![0.0; self.classes];
+        for &i in idx {
+            c[self.y[i as usize] as usize] += self.weight[i as usize];
+        }
+        c
+    }
+
+    /// The best (feature, bin) among `mtry` random features, if any split separates.
+    fn best_split(&mut self, idx: &[u32], total: &[f64]) -> Option<(usize, usize)> {
+        let nf = self.data.edges.len();
+        let c = self.classes;
+        let parent = gini_mass(total);
+        let mut order: Vec<usize> = (0..nf).collect();
+        let mut best: Option<(f64, usize, usize)> = None;
+        let mut hist = vec![0.0; BINS * c];
+        for k in 0..self.mtry.min(nf) {
+            let j = k + self.rng.below(nf - k);
+            order.swap(k, j);
+            let f = order[k];
+            let nb = self.data.edges[f].len() + 1;
+            if nb < 2 {
+                continue;
+            }
+            hist[..nb * c].iter_mut().for_each(|h| *h = 0.0);
+            let col = &self.data.bins[f * self.data.n..(f + 1) * self.data.n];
+            for &i in idx {
+                let i = i as usize;
+                hist[col[i] as usize * c + self.y[i] as usize] += self.weight[i];
+            }
+            let mut left = vec![0.0; c];
+            for b in 0..nb - 1 {
+                for (l, h) in left.iter_mut().zip(&hist[b * c..(b + 1) * c]) {
+                    *l += h;
+                }
+                let right: Vec<f64> = total.iter().zip(&left).map(|(t, l)| t - l).collect();
+                let (wl, wr): (f64, f64) = (left.iter().sum(), right.iter().sum());
+                if wl <= 0.0 || wr <= 0.0 {
+                    continue;
+                }
+                let gain = parent - gini_mass(&left) - gini_mass(&right);
+                if gain > 1e-9 && best.is_none_or(|(g, _, _)| gain > g) {
+                    best = Some((gain, f, b));
+                }
+            }
+        }
+        best.map(|(_, f, b)| (f, b))
+    }
+
+    /// Grows the subtree of the samples `idx` at `depth`; returns its node index.
+    fn grow(&mut self, idx: &mut [u32], depth: usize) -> u32 {
+        let at = self.nodes.len() as u32;
+        self.depth = self.depth.max(depth as u32);
+        let total = self.counts(idx);
+        let pure = total.iter().filter(|&&v| v > 0.0).count() <= 1;
+        let split = if pure || depth >= self.max_depth || idx.len() < 2 {
+            None
+        } else {
+            self.best_split(idx, &total)
+        };
+        let Some((f, b)) = split else {
+            let w: f64 = total.iter().sum();
+            self.nodes.push(Node {
+                feature: 0,
+                threshold: f32::INFINITY,
+                left: at,
+                right: at,
+            });
+            self.leaf_of.push(self.leaf_values.len() as u32);
+            self.leaf_values
+                .extend(total.iter().map(|&v| (v / w.max(1e-12)) as f32));
+            return at;
+        };
+        self.nodes.push(Node {
+            feature: f as u32,
+            threshold: self.data.edges[f][b],
+            left: at + 1,
+            right: 0,
+        });
+        self.leaf_of.push(u32::MAX);
+        let col = &self.data.bins[f * self.data.n..(f + 1) * self.data.n];
+        // Partition in place: bins ≤ b first.
+        let mut m = 0;
+        for k in 0..idx.len() {
+            if col[idx[k] as usize] as usize <= b {
+                idx.swap(k, m);
+                m += 1;
+            }
+        }
+        let (l, r) = idx.split_at_mut(m);
+        self.grow(l, depth + 1);
+        let right = self.grow(r, depth + 1);
+        self.nodes[at as usize].right = right;
+        at
+    }
+}
+
+impl Forest {
+    /// Trains on `n` samples of `nf` features (`x` row-major, `n × nf`) with class
+    /// indices `y` (< `classes`).
+    ///
+    /// # Panics
+    /// If the sizes disagree, `n` is 0 or a class index is out of range.
+    pub fn train(x: &[f32], y: &[u8], nf: usize, classes: usize, p: &ForestParams) -> Forest {
+        let n = y.len();
+        assert!(n > 0 && x.len() == n * nf, "training set size");
+        assert!(y.iter().all(|&c| (c as usize) < classes), "class index");
+        let data = bin_features(x, n, nf);
+        let mtry = ((nf as f64).sqrt().floor() as usize).max(1);
+        let mut forest = Forest {
+            classes,
+            features: nf,
+            nodes: Vec::new(),
+            roots: Vec::new(),
+            leaf_of: Vec::new(),
+            leaf_values: Vec::new(),
+        };
+        let mut rng = Rng(p.seed);
+        for _ in 0..p.trees.max(1) {
+            // The bootstrap as weights: how often each sample was drawn.
+            let mut weight = vec![0.0; n];
+            for _ in 0..n {
+                weight[rng.below(n)] += 1.0;
+            }
+            let mut idx: Vec<u32> = (0..n as u32)
+                .filter(|&i| weight[i as usize] > 0.0)
+                .collect();
+            let mut g = Grower {
+                data: &data,
+                y,
+                weight: &weight,
+                classes,
+                mtry,
+                max_depth: p.max_depth,
+                rng: Rng(rng.next()),
+                nodes: Vec::new(),
+                leaf_of: Vec::new(),
+                leaf_values: Vec::new(),
+                depth: 0,
+            };
+            g.grow(&mut idx, 0);
+            forest.append(g.nodes, g.leaf_of, g.leaf_values, g.depth);
+        }
+        forest
+    }
+
+    /// Adds one tree (node indices local to it).
+    fn append(&mut self, nodes: Vec<Node>, leaf_of: Vec<u32>, values: Vec<f32>, depth: u32) {
+        let base = self.nodes.len() as u32;
+        let vbase = self.leaf_values.len() as u32;
+        self.roots.push((base, depth));
+        self.nodes.extend(nodes.into_iter().map(|nd| Node {
+            left: nd.left + base,
+            right: nd.right + base,
+            ..nd
+        }));
+        self.leaf_of.extend(
+            leaf_of
+                .into_iter()
+                .map(|o| if o == u32::MAX { o } else { o + vbase }),
+        );
+        self.leaf_values.extend(values);
+    }
+
+    /// Adds the mean class distribution of pixels `start..start + out.len() / classes`
+    /// into `out` (`classes` per pixel, zeroed by the caller); `planes[f]` holds feature
+    /// f of every pixel.
+    pub fn predict_block(&self, planes: &[&[f32]], start: usize, out: &mut [f32]) {
+        let c = self.classes;
+        let len = out.len() / c;
+        let nf = self.features;
+        assert!(planes.len() == nf && planes.iter().all(|p| p.len() >= start + len));
+        // Pixels a chunk at a time, their features gathered pixel by pixel: a walk then
+        // reads one small buffer, and the chunk stays in cache across all the trees.
+        let mut buf = vec![0f32; CHUNK * nf];
+        for from in (0..len).step_by(CHUNK) {
+            let n = CHUNK.min(len - from);
+            for (f, plane) in planes.iter().enumerate() {
+                for (k, &v) in plane[start + from..start + from + n].iter().enumerate() {
+                    buf[k * nf + f] = v;
+                }
+            }
+            self.walk_chunk(&buf[..n * nf], &mut out[from * c..(from + n) * c]);
+        }
+    }
+
+    /// Every tree over the pixels of `buf` (`features` values each), summed into `out`.
+    fn walk_chunk(&self, buf: &[f32], out: &mut [f32]) {
+        const LANES: usize = 8;
+        let (c, nf) = (self.classes, self.features);
+        let n = buf.len() / nf;
+        let scale = 1.0 / self.roots.len() as f32;
+        let nodes = &self.nodes[..];
+        for &(root, depth) in &self.roots {
+            for p in (0..n).step_by(LANES) {
+                let lanes = LANES.min(n - p);
+                let mut at = [root; LANES];
+                // Eight walks in lockstep (a leaf loops to itself): the loads overlap,
+                // and the one branch, "all eight in leaves", is as predictable as
+                // neighbouring pixels are alike.
+                for _ in 0..depth {
+                    let mut moving = false;
+                    for k in 0..LANES {
+                        // Lanes past the chunk's end re-read its last pixel.
+                        let px = p + k.min(lanes - 1);
+                        let nd = nodes[at[k] as usize];
+                        let v = buf[px * nf + nd.feature as usize];
+                        let next = if v <= nd.threshold { nd.left } else { nd.right };
+                        moving |= next != at[k];
+                        at[k] = next;
+                    }
+                    if !moving {
+                        break;
+                    }
+                }
+                for (k, &a) in at.iter().enumerate().take(lanes) {
+                    let o = self.leaf_of[a as usize] as usize;
+                    for (d, v) in out[(p + k) * c..(p + k + 1) * c]
+                        .iter_mut()
+                        .zip(&self.leaf_values[o..o + c])
+                    {
+                        *d += v * scale;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The class distribution of one sample (`features` values).
+    pub fn predict_one(&self, sample: &[f32]) -> Vec<f32> {
+        let planes: Vec<&[f32]> = sample.chunks(1).collect();
+        let mut out = vec![0.0; self.classes];
+        self.predict_block(&planes, 0, &mut out);
+        out
+    }
+}

@@ -1,0 +1,132 @@
+//! What the contours read from a trained classifier: a probability image in place of
+//! the intensity (object bright, decision level ½, no local levels), and the seeds of
+//! an instance run.
+//!
+//! Two images, one per kind of run, because the boundary class must act in two ways:
+//! - a run whose topology adapts (a wrap) reads P(object): the boundary between touching
+//!   objects counts as background, so the fronts stop on both sides of it and the wrap
+//!   splits the colony into one contour per object;
+//! - a run that keeps its topology (preserve or implicit mode, seeds) reads
+//!   1 − P(background) = P(object) + P(boundary): each seed grows through the boundary
+//!   band until it meets its neighbour, where the engine holds the two apart, so the
+//!   objects keep their full area.
+//!
+//! The seeds ([`seeds`]) are the connected interiors of P(object) > max(P(background),
+//! P(boundary)): the boundary band cuts touching objects apart.
+
+use super::{Classifier, FeatureSet, ForestParams, Probabilities, Strokes};
+use super::{BACKGROUND, BOUNDARY, OBJECT};
+use crate::evolution::{Mode, Params, Polarity};
+use crate::geometry::Point;
+use crate::image::{Field, Modality};
+use crate::shape::Shape;
+
+/// A run guided by a classifier: the probabilities, the image the engine reads and the
+/// parameters it reads it with.
+#[derive(Clone, Debug)]
+pub struct Guide {
+    /// Per pixel class probabilities.
+    pub probabilities: Probabilities,
+    /// The image the engine reads ([`probability_field`]).
+    pub field: Field,
+    /// `params` with objects bright, the generic image kind and no local levels: the
+    /// decision level is probability ½.
+    pub params: Params,
+}
+
+impl Guide {
+    /// Trains a classifier on `strokes` painted on `image` and predicts the image;
+    /// `params` are the run's (its mode chooses the field).
+    pub fn train(image: &Field, strokes: &Strokes, params: &Params) -> Self {
+        let set = FeatureSet::default();
+        let features = set.compute(image.width, image.height, &image.data);
+        let clf = Classifier::train_with(set, &features, strokes, &ForestParams::default());
+        Self::new(clf.predict(&features), params)
+    }
+
+    /// The guide of known probabilities.
+    pub fn new(probabilities: Probabilities, params: &Params) -> Self {
+        let field = probability_field(&probabilities, params.mode != Mode::Adaptive);
+        let params = Params {
+            polarity: Polarity::Bright,
+            modality: Modality::Generic,
+            local: false,
+            ..params.clone()
+        };
+        Guide {
+            probabilities,
+            field,
+            params,
+        }
+    }
+}
+
+/// The image a run reads: P(object) when `keeps_topology` is false, else
+/// 1 − P(background).
+pub fn probability_field(p: &Probabilities, keeps_topology: bool) -> Field {
+    let data = if keeps_topology {
+        p.of(BACKGROUND).into_iter().map(|b| 1.0 - b).collect()
+    } else {
+        p.of(OBJECT)
+    };
+    Field::new(p.width, p.height, data)
+}
+
+/// Fewest pixels an object's interior needs to become a seed (scikit-image's
+/// trainable segmentation as `shared/tools/peer.py` runs it drops objects under 10 px).
+pub const MIN_SEED_PIXELS: usize = 10;
+
+/// One seed per connected interior (4-connected pixels where the object class wins) of
+/// at least [`MIN_SEED_PIXELS`]: its outline, or a disk where the outline is too small.
+pub fn seeds(p: &Probabilities) -> Vec<Shape> {
+    let (w, h) = (p.width, p.height);
+    let (po, pb, pd) = (p.of(OBJECT), p.of(BACKGROUND), p.of(BOUNDARY));
+    let core: Vec<bool> = (0..w * h).map(|i| po[i] > pb[i] && po[i] > pd[i]).collect();
+    let mut label = vec![0u32; w * h];
+    let mut parts: Vec<(usize, usize)> = Vec::new(); // (first pixel, size)
+    let mut stack = Vec::new();
+    for start in 0..w * h {
+        if !core[start] || label[start] != 0 {
+            continue;
+        }
+        let l = parts.len() as u32 + 1;
+        label[start] = l;
+        stack.push(start);
+        let mut size = 0;
+        while let Some(i) = stack.pop() {
+            size += 1;
+            for j in crate::image::field::neighbours4(i, w, h) {
+                if core[j] && label[j] == 0 {
+                    label[j] = l;
+                    stack.push(j);
+                }
+            }
+        }
+        parts.push((start, size));
+    }
+    let dist = crate::image::distance::distance_transform(&core, w, h);
+    // Per part, its most interior pixel: the outline is traced from there.
+    let mut deepest = vec![usize::MAX; parts.len()];
+    for (i, &l) in label.iter().enumerate() {
+        if l > 0 {
+            let d = &mut deepest[l as usize - 1];
+            if *d == usize::MAX || dist.data[i] > dist.data[*d] {
+                *d = i;
+            }
+        }
+    }
+    parts
+        .iter()
+        .zip(&deepest)
+        .enumerate()
+        .filter(|(_, (&(_, size), _))| size >= MIN_SEED_PIXELS)
+        .map(|(k, (_, &at))| {
+            crate::image::outline::basin_outline(&label, k as u32 + 1, at, w, h)
+                .map(Shape::Polygon)
+                .unwrap_or(Shape::Disk {
+                    center: Point::new((at % w) as f64 + 0.5, (at / w) as f64 + 0.5),
+                    radius: (0.5 * dist.data[at] as f64).max(1.0),
+                })
+        })
+        .collect()
+}

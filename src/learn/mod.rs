@@ -1,0 +1,129 @@
+//! Teaching by example: a pixel classifier trained from a user's strokes, as ilastik's
+//! pixel classification (Sommer et al. 2011), Labkit and QuPath's pixel classifier do.
+//! The user paints a few strokes — background, object, and the boundary between
+//! touching objects — a random forest ([`forest`]) on multiscale filter features
+//! ([`features`]) learns them, and predicts every pixel's class probabilities
+//! ([`Probabilities`]). The contours then read those probabilities instead of the
+//! intensity (see [`guide`]): the boundary class is what keeps
+//! touching cells with no intensity step between them apart.
+
+pub mod features;
+pub mod filters;
+pub mod forest;
+pub mod guide;
+pub mod strokes;
+
+pub use features::{FeatureSet, Features};
+pub use forest::{Forest, ForestParams};
+pub use strokes::{StrokeError, Strokes, BACKGROUND, BOUNDARY, OBJECT};
+
+/// A trained pixel classifier: the features it reads, the stroke labels of its classes
+/// and the forest.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Classifier {
+    /// The feature definitions' version ([`features::FEATURE_VERSION`]).
+    pub feature_version: u32,
+    /// The features.
+    pub features: FeatureSet,
+    /// The stroke label of each class index (1 background, 2 object, 3 boundary).
+    pub labels: Vec<u8>,
+    /// How the forest was grown.
+    pub params: ForestParams,
+    /// The forest.
+    pub forest: Forest,
+}
+
+/// Per pixel, the probability of each stroke label.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Probabilities {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// The stroke label of each class, in the order of `data`.
+    pub labels: Vec<u8>,
+    /// Per pixel, `labels.len()` probabilities summing to 1.
+    pub data: Vec<f32>,
+}
+
+impl Probabilities {
+    /// P(`label`) at every pixel (0 everywhere for a label the classifier never saw).
+    pub fn of(&self, label: u8) -> Vec<f32> {
+        let c = self.labels.len();
+        match self.labels.iter().position(|&l| l == label) {
+            Some(k) => self.data.iter().skip(k).step_by(c).copied().collect(),
+            None => vec![0.0; self.width * self.height],
+        }
+    }
+
+    /// The most probable label at every pixel (ties: the lower label).
+    pub fn argmax(&self) -> Vec<u8> {
+        let c = self.labels.len();
+        self.data
+            .chunks_exact(c)
+            .map(|p| {
+                let k = (0..c).fold(0, |b, k| if p[k] > p[b] { k } else { b });
+                self.labels[k]
+            })
+            .collect()
+    }
+}
+
+impl Classifier {
+    /// Trains on the pixels the strokes label, with the default features.
+    pub fn train(features: &Features, strokes: &Strokes, params: &ForestParams) -> Self {
+        Self::train_with(FeatureSet::default(), features, strokes, params)
+    }
+
+    /// Trains on the pixels the strokes label; `set` must be what made `features`.
+    ///
+    /// # Panics
+    /// If the features and the strokes differ in size.
+    pub fn train_with(
+        set: FeatureSet,
+        features: &Features,
+        strokes: &Strokes,
+        params: &ForestParams,
+    ) -> Self {
+        assert_eq!(
+            (features.width, features.height),
+            (strokes.width, strokes.height),
+            "features and strokes size"
+        );
+        let labels = strokes.classes();
+        let nf = features.planes.len();
+        let mut x = Vec::new();
+        let mut y = Vec::new();
+        for (i, &l) in strokes.labels.iter().enumerate() {
+            if let Some(k) = labels.iter().position(|&c| c == l) {
+                x.extend(features.planes.iter().map(|p| p[i]));
+                y.push(k as u8);
+            }
+        }
+        let forest = Forest::train(&x, &y, nf, labels.len(), params);
+        Classifier {
+            feature_version: features::FEATURE_VERSION,
+            features: set,
+            labels,
+            params: *params,
+            forest,
+        }
+    }
+
+    /// The class probabilities of every pixel of `features`.
+    pub fn predict(&self, features: &Features) -> Probabilities {
+        let (w, h) = (features.width, features.height);
+        let c = self.labels.len();
+        let planes: Vec<&[f32]> = features.planes.iter().map(|p| p.as_slice()).collect();
+        let mut data = vec![0.0f32; w * h * c];
+        filters::for_rows(&mut data, w * c, |y, row| {
+            self.forest.predict_block(&planes, y * w, row);
+        });
+        Probabilities {
+            width: w,
+            height: h,
+            labels: self.labels.clone(),
+            data,
+        }
+    }
+}
