@@ -2,55 +2,15 @@
 //! egui_kittest through the real `TopoApp::ui`.
 #![cfg(feature = "gui")]
 
+mod app_kit;
+
+use app_kit::*;
+
 use egui_kittest::kittest::Queryable;
 use egui_kittest::Harness;
 use topocontour::app::{Command, Tool, TopoApp};
 use topocontour::evolution::{Modality, Mode, Polarity, Shape};
 use topocontour::{Point, TopologyEvent};
-
-fn harness(app: TopoApp) -> Harness<'static, TopoApp> {
-    Harness::builder()
-        .with_size(egui::vec2(1280.0, 800.0))
-        .build_ui_state(|ui, app: &mut TopoApp| app.ui(ui), app)
-}
-
-fn case_image(name: &str) -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/cases")
-        .join(name)
-        .join("image.png")
-}
-
-fn temp(name: &str) -> std::path::PathBuf {
-    std::env::temp_dir().join(format!("topocontour-doc-{}-{name}", std::process::id()))
-}
-
-/// Clicks the canvas at `pos` (press and release on successive frames).
-fn click_at(h: &mut Harness<'_, TopoApp>, pos: egui::Pos2) {
-    h.hover_at(pos);
-    h.step();
-    h.drag_at(pos);
-    h.step();
-    h.drop_at(pos);
-    h.step();
-    h.step();
-}
-
-fn contours_now(h: &Harness<'_, TopoApp>) -> usize {
-    h.state().shown_record().unwrap().contours
-}
-
-/// Steps in chunks until the run on screen has finished.
-fn run_to_end(h: &mut Harness<'_, TopoApp>) {
-    for _ in 0..100 {
-        h.state_mut().send(Command::Step(50));
-        h.step();
-        if h.state().doc.run.as_ref().unwrap().evolver.is_finished() {
-            break;
-        }
-    }
-    h.step();
-}
 
 /// Issue 23: Preserve, Find seeds, play to the end, delete a contour with Edit, drag the
 /// timeline back, press Right then Space: the deletion survives; Undo and Redo bring it
@@ -339,7 +299,7 @@ fn an_adaptive_merge_of_two_seeds_says_how_to_keep_them_apart() {
     h.step();
     run_to_end(&mut h);
     assert_eq!(contours_now(&h), 1);
-    let notice = h.state().status.notice.clone().unwrap_or_default();
+    let notice = notice(&h);
     assert!(notice.contains("Preserve"), "{notice}");
     h.state_mut().status.notice = None;
     h.state_mut().send(Command::Reset);

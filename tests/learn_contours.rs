@@ -1,0 +1,105 @@
+//! Contours that follow a classifier trained from strokes: touching rods with no
+//! intensity step between them (only a faint ridge) come apart, one object per rod,
+//! when the user paints the boundary class — and not without it; bad strokes are
+//! refused with one line.
+
+mod common;
+
+use common::{bin, refused, s, workdir};
+use std::path::Path;
+use topocontour::check::{strokes_for, touching_rods};
+use topocontour::contours::measure::regions;
+use topocontour::evolution::{Mode, Params, Polarity};
+use topocontour::job::Job;
+
+const W: usize = 160;
+const H: usize = 120;
+
+fn write_gray(path: &Path, data: Vec<u8>) {
+    image::GrayImage::from_raw(W as u32, H as u32, data)
+        .unwrap()
+        .save(path)
+        .unwrap();
+}
+
+/// Rods with exactly one region whose centroid lies in them, of all rods, after an
+/// instance run (seeds from the classifier, preserve mode) on strokes with or without
+/// the boundary class.
+fn rods_found(boundary: bool, name: &str) -> (usize, usize) {
+    let dir = workdir("learn", name);
+    let (img, labels) = touching_rods(W, H, 24, 8);
+    let image = dir.join("rods.png");
+    write_gray(
+        &image,
+        img.iter()
+            .map(|v| (v * 255.0).round().clamp(0.0, 255.0) as u8)
+            .collect(),
+    );
+    let strokes = dir.join("strokes.png");
+    write_gray(&strokes, strokes_for(&labels, W, H, 8, boundary));
+    let params = Params {
+        mode: Mode::Preserve,
+        polarity: Polarity::Dark,
+        ..Params::default()
+    };
+    let job = Job {
+        auto_seeds: true,
+        strokes: Some(strokes),
+        ..Job::new(&image, Vec::new(), params)
+    };
+    let run = job.run().unwrap();
+    let rods = labels.iter().copied().max().unwrap() as usize;
+    let mut hits = vec![0usize; rods + 1];
+    for r in regions(run.ev.contours()) {
+        let (x, y) = (r.centroid.x as usize, r.centroid.y as usize);
+        if x < W && y < H {
+            hits[labels[y * W + x] as usize] += 1;
+        }
+    }
+    let one = hits[1..].iter().filter(|&&k| k == 1).count();
+    (one, rods)
+}
+
+#[test]
+fn boundary_strokes_split_touching_rods() {
+    let (with, rods) = rods_found(true, "with");
+    let (without, _) = rods_found(false, "without");
+    eprintln!("one object per rod: {with} of {rods} with boundary strokes, {without} without");
+    assert!(with * 10 >= rods * 9, "{with} of {rods}");
+    assert!(without * 2 <= rods, "{without} of {rods}");
+}
+
+#[test]
+fn bad_strokes_get_one_line_and_exit_2() {
+    let dir = workdir("learn", "bad");
+    let (img, labels) = touching_rods(W, H, 24, 8);
+    let image = dir.join("rods.png");
+    write_gray(&image, img.iter().map(|v| (v * 255.0) as u8).collect());
+    let run = |strokes: &Path, needle: &str| {
+        refused(
+            bin()
+                .args(["segment", s(&image), "--wrap", "2", "--object", "dark"])
+                .args(["--train", s(strokes)]),
+            needle,
+        );
+    };
+    let small = dir.join("small.png");
+    image::GrayImage::from_raw(4, 4, vec![2; 16])
+        .unwrap()
+        .save(&small)
+        .unwrap();
+    run(&small, "the strokes are 4×4 but the image is 160×120");
+    let only_bg = dir.join("bg.png");
+    write_gray(&only_bg, vec![1; W * H]);
+    run(&only_bg, "no object pixel");
+    let only_obj = dir.join("obj.png");
+    write_gray(
+        &only_obj,
+        labels.iter().map(|&l| if l > 0 { 2 } else { 0 }).collect(),
+    );
+    run(&only_obj, "only one class");
+    let odd = dir.join("odd.png");
+    write_gray(&odd, vec![9; W * H]);
+    run(&odd, "the value 9");
+    run(&dir.join("missing.png"), "cannot read the strokes");
+}
