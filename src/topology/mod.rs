@@ -108,6 +108,13 @@ impl ContourSet {
     /// Removes vertex `v`, joining its neighbours by a straight edge: the motion of `v`
     /// onto that edge, corrected like any other move.
     pub fn remove_vertex(&mut self, v: VertexId) -> Result<Vec<TopologyEvent>, MoveError> {
+        self.check_removal(v)?;
+        self.replace_vertex(v, None)
+    }
+
+    /// Why `v` cannot be removed, if it cannot: no such vertex, a triangle, or an edge
+    /// over the bound would replace it.
+    fn check_removal(&self, v: VertexId) -> Result<(), MoveError> {
         if !self.is_alive(v) {
             return Err(MoveError::NoVertex(v));
         }
@@ -121,7 +128,7 @@ impl ContourSet {
         if p.dist(n) > self.max_edge {
             return Err(MoveError::EdgeTooLong);
         }
-        self.replace_vertex(v, None)
+        Ok(())
     }
 
     /// Inserts a vertex on the edge from `a` to its successor, at parameter `t` in (0, 1).
