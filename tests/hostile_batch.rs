@@ -1,6 +1,6 @@
-//! Batch folders that must never lose an output or an input (issue 24: 3, 4, 17): each
-//! case asserts the exit code, one line on stderr, the inputs byte-identical and no file
-//! left behind.
+//! Batch folders that must never lose an output or an input, and the CLI's resources
+//! (issue 24: 3, 4, 10, 16, 17): each case asserts the exit code, one line on stderr, the
+//! inputs byte-identical and no file left behind.
 #![cfg(unix)]
 
 mod common;
@@ -95,4 +95,38 @@ fn a_format_named_twice_is_one_refusal() {
     let out = d.join("out");
     refused(&mut batch(&input, &out, "json,json"), "json twice");
     assert!(!out.exists());
+}
+
+/// Issue 24.10: `--jobs 100000` runs at most one thread per core (it used to spawn
+/// threads without end).
+#[test]
+fn jobs_are_capped_at_the_cores() {
+    let (d, input) = inputs("jobs", &["a.png"]);
+    let mut c = batch(&input, &d.join("out"), "json");
+    c.args(["--jobs", "100000"]);
+    let out = common::run_within(&mut c, std::time::Duration::from_secs(10));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// Issue 24.16: `bench > /dev/full` fails with one line (it used to exit 0).
+#[test]
+fn bench_to_a_full_disk_fails() {
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/cases/blobs_wrap");
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let out = bin()
+        .args(["bench", s(&case), "--runs", "1"])
+        .stdout(full)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("cannot write the table"), "{err}");
 }

@@ -5,12 +5,12 @@
 
 use std::os::unix::fs::FileTypeExt;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_topocontour"))
-}
+mod common;
+
+use common::{bin, run_within};
 
 /// A fresh folder of this test's own, with a copy of a small case image as input.
 fn workdir(name: &str) -> (PathBuf, PathBuf) {
@@ -24,25 +24,6 @@ fn workdir(name: &str) -> (PathBuf, PathBuf) {
     )
     .unwrap();
     (d, input)
-}
-
-/// Runs with a deadline: a hang fails the test instead of blocking it.
-fn run_within(cmd: &mut Command, limit: Duration) -> Output {
-    let mut child = cmd
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let t = Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if t.elapsed() > limit {
-            child.kill().unwrap();
-            panic!("{cmd:?} still running after {limit:?}");
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    }
-    child.wait_with_output().unwrap()
 }
 
 /// Exit 2 with exactly one line on stderr that contains `needle`.

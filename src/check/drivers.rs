@@ -61,19 +61,8 @@ pub fn run_moves_under(
             None
         } else {
             let q = draw_target(&set, v, &mut rng, mix);
-            // The broad phase must offer every edge that brute force finds near the move.
-            let b = Aabb::of(&[p, q, n]);
-            let mut near = Vec::new();
-            set.edges_near(&b, &mut near);
-            for w in set.vertices() {
-                if segment_meets_box(set.position(w), set.position(set.next(w)), &b)
-                    && !near.contains(&w)
-                {
-                    return Err(format!(
-                        "seed {seed} step {step}: broad phase missed edge {w}"
-                    ));
-                }
-            }
+            broad_phase_offers_all(&set, Aabb::of(&[p, q, n]))
+                .map_err(|w| format!("seed {seed} step {step}: broad phase missed edge {w}"))?;
             Some(q)
         };
         let free = (policy != TopologyPolicy::ADAPTIVE).then(|| {
@@ -106,6 +95,19 @@ pub fn run_moves_under(
             .map_err(at)?;
     }
     Ok((events, held))
+}
+
+/// Whether the broad phase offers every edge that brute force finds meeting `b` (`Err`:
+/// the first edge it missed).
+fn broad_phase_offers_all(set: &ContourSet, b: Aabb) -> Result<(), u32> {
+    let mut near = Vec::new();
+    set.edges_near(&b, &mut near);
+    for w in set.vertices() {
+        if segment_meets_box(set.position(w), set.position(set.next(w)), &b) && !near.contains(&w) {
+            return Err(w);
+        }
+    }
+    Ok(())
 }
 
 /// A move under a policy against the same move without one (`copy`, `free`).

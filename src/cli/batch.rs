@@ -35,7 +35,7 @@ pub struct BatchArgs {
     /// Outputs per image, comma-separated.
     #[arg(long, value_enum, value_delimiter = ',', default_value = "json")]
     pub formats: Vec<Format>,
-    /// Images segmented at once (default: one per core).
+    /// Images segmented at once (default, and at most: one per core).
     #[arg(long, value_name = "N")]
     pub jobs: Option<usize>,
 }
@@ -83,7 +83,7 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
         .expect("a valid template"),
     );
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(a.jobs.unwrap_or(0))
+        .num_threads(a.jobs.map_or(0, |n| n.min(cores())))
         .build()
         .map_err(|e| Failure {
             code: 1,
@@ -143,6 +143,11 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
         a.out.display()
     ));
     Ok(())
+}
+
+/// The cores this process may use (more threads only wait for them).
+fn cores() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
 }
 
 /// Refuses an output folder that is the input folder when an output is an image: the

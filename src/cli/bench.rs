@@ -44,15 +44,14 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
         }
     }
     let mut stdout = std::io::stdout().lock();
-    // A closed pipe (`| head`) ends the output quietly instead of panicking.
-    if writeln!(
+    // A closed pipe (`| head`) ends the output quietly; any other failure (a full disk)
+    // is one.
+    if let Err(e) = writeln!(
         stdout,
         "{:<18} {:>8} {:>8} {:>8} {:>7} {:>9}",
         "case", "min ms", "median", "max ms", "frames", "contours"
-    )
-    .is_err()
-    {
-        return Ok(());
+    ) {
+        return table_end(e);
     }
     for d in dirs {
         let mut args = SegmentArgs::from_case(&d)?;
@@ -71,7 +70,7 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
         }
         times.sort_by(f64::total_cmp);
         let name = crate::io::folder::file_name(&d);
-        if writeln!(
+        if let Err(e) = writeln!(
             stdout,
             "{:<18} {:>8.1} {:>8.1} {:>8.1} {:>7} {:>9}",
             name,
@@ -80,11 +79,20 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
             times[times.len() - 1],
             frames,
             contours
-        )
-        .is_err()
-        {
-            return Ok(());
+        ) {
+            return table_end(e);
         }
     }
-    Ok(())
+    stdout.flush().or_else(table_end)
+}
+
+/// A failed write of the table: the reader went away (fine), or the output failed.
+fn table_end(e: std::io::Error) -> Result<(), Failure> {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        return Ok(());
+    }
+    Err(Failure {
+        code: 1,
+        message: format!("cannot write the table: {e}"),
+    })
 }

@@ -54,6 +54,10 @@ pub struct TrackArgs {
     /// How far a contour moves in before the next frame starts from it (pixels).
     #[arg(long, value_name = "PX", default_value_t = 2.0)]
     pub shrink: f64,
+    /// Pyramid levels each frame after the first evolves through (coarse to fine; one
+    /// more level follows a move twice as large).
+    #[arg(long, value_name = "N", default_value_t = 2)]
+    pub levels: usize,
     /// Write the Cell Tracking Challenge result: OUT/maskTTT.tif and OUT/res_track.txt.
     #[arg(long, value_name = "OUT")]
     pub ctc: Option<PathBuf>,
@@ -116,6 +120,10 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
     settings.shrink = a.shrink;
     settings.auto_seeds = a.auto_seeds || init.is_empty();
     settings.new_cells = !a.no_new_cells;
+    if a.levels == 0 {
+        return Err(bad("--levels must be at least 1"));
+    }
+    settings.levels = a.levels;
     let plan = prepare(a)?;
     let mut tracker = Tracker::new(settings, init);
     let mut kept: Vec<TrackedFrame> = Vec::new();

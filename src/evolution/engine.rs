@@ -14,6 +14,7 @@ use super::explicit::{Adaptive, Explicit, Preserve, Track};
 use super::forces::ForceWeights;
 use super::implicit::ImplicitEngine;
 use crate::contours::ContourSet;
+use crate::geometry::Point;
 use crate::topology::{MotionRegion, TopologyEvent};
 
 /// What one frame did.
@@ -69,6 +70,14 @@ pub trait Engine {
     /// Opens holes where the region covers clear background on pyramid level `level`
     /// (only the adaptive engine; see [`super::explicit::nucleate`]); returns the events.
     fn nucleate(&mut self, level: usize) -> Vec<TopologyEvent>;
+    /// A hand drag of vertex `v` towards `to` on pyramid level `level` (see
+    /// [`super::Evolver::hand_drag`]): the events, and the vertex that leads at the end.
+    /// An engine whose contours are extracted from a grid (the implicit one) makes no
+    /// move: no event, no lead.
+    fn hand_drag(&mut self, v: u32, to: Point, level: usize) -> (Vec<TopologyEvent>, Option<u32>);
+    /// A brush stroke of `radius` from `from` to `to` on pyramid level `level` (see
+    /// [`super::Evolver::brush`]); returns the events (none in the implicit engine).
+    fn brush(&mut self, from: Point, to: Point, radius: f64, level: usize) -> Vec<TopologyEvent>;
 }
 
 /// The three engines, dispatched by enum.
@@ -122,5 +131,11 @@ impl Engine for Engines {
     }
     fn nucleate(&mut self, level: usize) -> Vec<TopologyEvent> {
         each!(self, e => e.nucleate(level))
+    }
+    fn hand_drag(&mut self, v: u32, to: Point, level: usize) -> (Vec<TopologyEvent>, Option<u32>) {
+        each!(self, e => e.hand_drag(v, to, level))
+    }
+    fn brush(&mut self, from: Point, to: Point, radius: f64, level: usize) -> Vec<TopologyEvent> {
+        each!(self, e => e.brush(from, to, radius, level))
     }
 }

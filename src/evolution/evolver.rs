@@ -1,8 +1,8 @@
 //! `Evolver`: contours moving under image forces one frame at a time (seed 003 §3 with
 //! seed 004's multiscale schedule, remeshing and convergence test).
 //!
-//! The evolver is thin: it prepares the image once (modality, pyramid, intensity model,
-//! local decision levels; see [`crate::image::local`]), builds the initial rings, and then owns
+//! The evolver is thin: it prepares the image once ([`ImageModel::prepare`]: modality,
+//! pyramid, intensity model, local decision levels), builds the initial rings, and then owns
 //! an engine ([`super::engine`]), the schedule over pyramid levels
 //! ([`super::schedule`]) and the log of topology events. Every move of the explicit
 //! engines goes through [`ContourSet::move_vertex`], so every topology change is exact
@@ -13,10 +13,12 @@
 //! a level-0 equilibrium is `converged`: one that stopped at `max_frames` or at the frame
 //! cap with areas still drifting is only finished.
 
+use super::edit::{Edit, FrameEvent};
 use super::engine::{Engine, Engines, Frame};
 use super::explicit::Explicit;
 use super::forces::ForceWeights;
 use super::implicit::{Implicit, ImplicitEngine};
+use super::initial::initial_set;
 use super::params::{
     check_memory, check_params, check_params_for, check_shapes, EvolveError, Mode, Params,
 };
@@ -24,84 +26,15 @@ use super::schedule::Schedule;
 use crate::contours::{ContourId, ContourSet};
 use crate::geometry::{Aabb, Point};
 use crate::image::field::{Field, Pyramid};
-use crate::image::hints::hints;
-use crate::image::intensity::IntensityModel;
-use crate::image::local;
-use crate::image::modality::{self, Modality};
-use crate::image::scale;
+use crate::image::{ImageModel, IntensityModel};
 use crate::shape::Shape;
 use crate::topology::TopologyEvent;
 use std::sync::Arc;
 
-/// A topology event with the frame it happened in.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
-pub struct FrameEvent {
-    /// Frames done when it happened.
-    pub frame: usize,
-    /// What happened.
-    #[serde(flatten)]
-    pub event: TopologyEvent,
-}
-
-/// A user's intervention in a run, at the frame it was made: what a session replays.
-#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(tag = "edit", rename_all = "snake_case")]
-pub enum Edit {
-    /// New force weights and step from this frame on.
-    Forces {
-        /// Frames done when it was made.
-        frame: usize,
-        /// The new weights.
-        weights: ForceWeights,
-        /// The new step, in grid spacings.
-        step: f64,
-    },
-    /// A hand drag of a contour vertex ([`Evolver::hand_drag`]).
-    Drag {
-        /// Frames done when it was made.
-        frame: usize,
-        /// The vertex.
-        vertex: u32,
-        /// Where to.
-        to: Point,
-    },
-    /// A brush stroke ([`Evolver::brush`]).
-    Brush {
-        /// Frames done when it was made.
-        frame: usize,
-        /// Where the brush's centre started.
-        from: Point,
-        /// Where it ended.
-        to: Point,
-        /// The brush's radius, pixels.
-        radius: f64,
-    },
-    /// A contour deleted by hand ([`Evolver::delete_contour`]).
-    Delete {
-        /// Frames done when it was made.
-        frame: usize,
-        /// The contour.
-        contour: u32,
-    },
-}
-
-impl Edit {
-    /// Frames done when the edit was made.
-    pub fn frame(&self) -> usize {
-        match *self {
-            Edit::Forces { frame, .. }
-            | Edit::Drag { frame, .. }
-            | Edit::Brush { frame, .. }
-            | Edit::Delete { frame, .. } => frame,
-        }
-    }
-}
-
 /// How many times the finest level may settle, open holes and run again. Holes already
 /// open after every coarser level; the one round at full resolution catches background
 /// too thin for the coarse grids (the channels between touching cells) at the price of
-/// one more settling (on a photograph of coins, 233 → 288 frames for one round, 303 for
-/// two, with the same result).
+/// one more settling; a second round found nothing more (`docs/decisions.md`).
 const REOPEN_ROUNDS: usize = 1;
 
 /// Runs the evolution.
@@ -110,7 +43,8 @@ pub struct Evolver {
     engine: Engines,
     schedule: Schedule,
     params: Params,
-    model: IntensityModel,
+    /// What the engines read of the image.
+    image: Arc<ImageModel>,
     frame: usize,
     events: Vec<FrameEvent>,
     /// The user's interventions so far, in order.
@@ -119,8 +53,6 @@ pub struct Evolver {
     start_params: Params,
     /// Times the finest level settled and holes opened after it.
     reopened: usize,
-    width: usize,
-    height: usize,
 }
 
 impl Evolver {
@@ -133,40 +65,40 @@ impl Evolver {
         check_shapes(init, image.width, image.height)?;
         check_params_for(&params, image.width, image.height)?;
         check_memory(image.width, image.height)?;
-        // Phase contrast: the halo reads as background, clipped to the level of the band a
-        // wrap shows.
-        let band = (params.modality == Modality::PhaseContrast)
-            .then(|| hints(image, init).1)
-            .flatten();
-        let image = modality::for_modality(image, params.polarity, params.modality, band);
-        let pyramid = Arc::new(Pyramid::new(&image, params.coarsest_side, 4));
-        let coarsest = pyramid.levels.len() - 1;
-        let fine = &pyramid.levels[0].image;
-        let (object_hint, background_hint) = hints(fine, init);
-        let model = IntensityModel::learn(fine, params.polarity, object_hint, background_hint);
-        let decision = Arc::new(decision_levels(&pyramid, &model, &params));
+        let model = Arc::new(ImageModel::prepare(image, &params.model_params(), init));
+        Self::with_image(model, init, params)
+    }
+
+    /// The run over an image already prepared as `params` say (see
+    /// [`Params::model_params`]), from the shapes `init`.
+    fn with_image(
+        image: Arc<ImageModel>,
+        init: &[Shape],
+        params: Params,
+    ) -> Result<Self, EvolveError> {
+        let (width, height) = image.size();
         let domain = Aabb {
             min: Point::new(0.0, 0.0),
-            max: Point::new(image.width as f64, image.height as f64),
+            max: Point::new(width as f64, height as f64),
         };
+        let coarsest = image.coarsest();
         let set = initial_set(init, domain, Pyramid::scale(coarsest), &params)?;
         let (w, step) = (params.weights, params.step);
         let (engine, level) = match params.mode {
             Mode::Adaptive => (
-                Engines::Adaptive(Explicit::new(set, pyramid, decision, model, w, step)),
+                Engines::Adaptive(Explicit::new(set, image.clone(), w, step)),
                 coarsest,
             ),
             Mode::Preserve => (
-                Engines::Preserve(Explicit::new(set, pyramid, decision, model, w, step)),
+                Engines::Preserve(Explicit::new(set, image.clone(), w, step)),
                 coarsest,
             ),
             Mode::Track => (
-                Engines::Track(Explicit::new(set, pyramid, decision, model, w, step)),
+                Engines::Track(Explicit::new(set, image.clone(), w, step)),
                 coarsest,
             ),
             Mode::Implicit => {
-                let state = Implicit::new(fine, model, init);
-                let engine = ImplicitEngine::new(state, domain, params.broad_phase);
+                let engine = ImplicitEngine::new(&image, init, domain, params.broad_phase);
                 (Engines::Implicit(Box::new(engine)), 0)
             }
         };
@@ -178,14 +110,12 @@ impl Evolver {
             engine,
             schedule: Schedule::new(level),
             params,
-            model,
+            image,
             frame: 0,
             events: Vec::new(),
             edits: Vec::new(),
             start_params,
             reopened: 0,
-            width: image.width,
-            height: image.height,
         })
     }
 
@@ -210,7 +140,11 @@ impl Evolver {
     }
     /// The two-class intensity model learnt from the image and the initialisation.
     pub fn model(&self) -> IntensityModel {
-        self.model
+        self.image.global()
+    }
+    /// What the engines read of the image (shared: cloning a run does not copy it).
+    pub fn image(&self) -> &Arc<ImageModel> {
+        &self.image
     }
     /// Frames done.
     pub fn frames(&self) -> usize {
@@ -243,7 +177,7 @@ impl Evolver {
     }
     /// The image's width and height in pixels.
     pub fn size(&self) -> (usize, usize) {
-        (self.width, self.height)
+        self.image.size()
     }
 
     /// Advances one frame: every vertex moves once, then the rings are remeshed (in
@@ -330,20 +264,14 @@ impl Evolver {
             vertex: v,
             to,
         });
-        let level = self.schedule.level;
-        let (events, lead) = match &mut self.engine {
-            Engines::Adaptive(e) => e.hand_drag(v, to, level),
-            Engines::Preserve(e) => e.hand_drag(v, to, level),
-            Engines::Track(e) => e.hand_drag(v, to, level),
-            Engines::Implicit(_) => (Vec::new(), None),
-        };
+        let (events, lead) = self.engine.hand_drag(v, to, self.schedule.level);
         self.log_events(&events);
         (events, lead)
     }
 
     /// A brush stroke of `radius` from `from` to `to`: contour vertices inside the moving
     /// disc are pushed out to its rim through the topology core (see
-    /// [`super::explicit::Explicit::brush`]); the events are logged at the current frame.
+    /// [`Engine::brush`]); the events are logged at the current frame.
     /// Not in `Mode::Implicit` (no event).
     pub fn brush(&mut self, from: Point, to: Point, radius: f64) -> Vec<TopologyEvent> {
         if check_brush(radius, from, to, self.diagonal()).is_err() {
@@ -355,13 +283,7 @@ impl Evolver {
             to,
             radius,
         });
-        let level = self.schedule.level;
-        let events = match &mut self.engine {
-            Engines::Adaptive(e) => e.brush(from, to, radius, level),
-            Engines::Preserve(e) => e.brush(from, to, radius, level),
-            Engines::Track(e) => e.brush(from, to, radius, level),
-            Engines::Implicit(_) => Vec::new(),
-        };
+        let events = self.engine.brush(from, to, radius, self.schedule.level);
         self.log_events(&events);
         events
     }
@@ -434,7 +356,8 @@ impl Evolver {
 
     /// The image's diagonal, pixels: the largest length any edit needs.
     fn diagonal(&self) -> f64 {
-        (self.width as f64).hypot(self.height as f64)
+        let (w, h) = self.size();
+        (w as f64).hypot(h as f64)
     }
 
     fn log_events(&mut self, events: &[TopologyEvent]) {
@@ -473,71 +396,6 @@ fn check_brush(radius: f64, from: Point, to: Point, diagonal: f64) -> Result<(),
         )));
     }
     Ok(())
-}
-
-/// Per pyramid level, the local decision level of the region term (empty: the global
-/// model decides).
-fn decision_levels(
-    pyramid: &Pyramid,
-    model: &IntensityModel,
-    params: &Params,
-) -> Vec<local::Decision> {
-    if !params.local {
-        return Vec::new();
-    }
-    let fine = &pyramid.levels[0].image;
-    let radius = params
-        .local_radius
-        .unwrap_or_else(|| scale::object_scale(fine, model));
-    let rule = local::LevelRule::new(fine, model, params.modality);
-    pyramid
-        .levels
-        .iter()
-        .enumerate()
-        .map(|(l, lv)| {
-            let r = (radius / Pyramid::scale(l)).round().max(1.0) as usize;
-            local::decision_field(&lv.image, r, model, &rule)
-        })
-        .collect()
-}
-
-/// The initial rings: each shape clipped to the image with vertices 1.5 grid spacings
-/// apart; the region is the union of the shapes.
-fn initial_set(
-    init: &[Shape],
-    domain: Aabb,
-    spacing: f64,
-    params: &Params,
-) -> Result<ContourSet, EvolveError> {
-    let mut set = ContourSet::with_broad_phase(
-        domain,
-        spacing * 2.0 * std::f64::consts::SQRT_2,
-        params.broad_phase,
-    );
-    for shape in init {
-        // Overlapping shapes: a smaller copy still seeds the region; growth joins them.
-        for f in [1.0, 0.5, 0.25] {
-            let ring = shape.scaled(f).ring_within(spacing * 1.5, &domain);
-            if ring.len() >= 3 && set.add_ring(&ring).is_ok() {
-                break;
-            }
-        }
-    }
-    // A ring inside another shape's ring (a seed inside the wrap rectangle) bounds nothing
-    // new, and an outer ring nested in an outer ring would break the orientation invariant.
-    let nested: Vec<_> = set
-        .parents()
-        .into_iter()
-        .filter(|(_, parent)| parent.is_some())
-        .map(|(id, _)| id)
-        .collect();
-    for id in nested {
-        set.remove_ring(id);
-    }
-    if set.contour_count() == 0 {
-        return Err(EvolveError::EmptyInit);
-    }
-    Ok(set)
 }
 
 #[cfg(test)]

@@ -13,10 +13,7 @@
 //!   faded by an edge-stopping factor so that it never moves the equilibrium off the edge.
 //! - Smoothing is weak: a user expects contours to follow narrow slots and thin bridges.
 
-use crate::geometry::Point;
-use crate::image::field::Level;
-use crate::image::local::Decision;
-use crate::image::IntensityModel;
+use crate::image::model::Probe;
 
 /// Weights of the forces (defaults serve every public case; see `Params`).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -54,44 +51,19 @@ pub struct NormalSpeed {
     pub region: f64,
 }
 
-/// Normal speed at `x` (level coordinates) with outward unit normal `n`; `decision` is
-/// the level's local decision level and contrast, if any.
+/// Normal speed from what the image says at a vertex ([`Probe`]: the region score,
+/// the edge stop and the edge attraction) under the weights `w`.
 #[inline]
-pub fn normal_speed(
-    level: &Level,
-    decision: Option<&Decision>,
-    model: &IntensityModel,
-    w: &ForceWeights,
-    x: Point,
-    n: Point,
-) -> NormalSpeed {
-    let t = level.sample(x);
-    // The score in units of half the contrast, and the contrast: local or global.
-    let (s, contrast) = match decision {
-        Some(d) => {
-            let half = d.half.sample(x).max(1e-6);
-            ((t.value - d.level.sample(x)) * d.sign / half, 2.0 * half)
-        }
-        None => (
-            model.score(t.value),
-            (model.object - model.background).abs().max(1e-6),
-        ),
-    };
+pub fn normal_speed(at: &Probe, w: &ForceWeights) -> NormalSpeed {
+    let s = at.score;
     let region = s.clamp(-1.0, 1.0);
     // Balloon with the object's intensity window (scores 0 to 2.5): out inside it, in
     // outside, ramping over a quarter of the score at the window's edges so that it
     // never chatters across an edge; faded where the gradient says an edge is near.
     let window = ((s / 0.25).min((2.5 - s) / 0.25)).clamp(-1.0, 1.0);
-    let gmag = t.gradient.norm() / contrast;
-    let stop = 1.0 / (1.0 + 16.0 * gmag * gmag);
-    let balloon = window * stop;
-    // Edge attraction: climb the gradient magnitude along the normal (half a pixel each
-    // way: halos and texture make wider differences chatter).
-    let ahead = level.gmag(x + n * 0.5);
-    let behind = level.gmag(x - n * 0.5);
-    let edge = (2.0 * (ahead - behind) / contrast).clamp(-1.0, 1.0);
+    let balloon = window * at.stop;
     NormalSpeed {
-        speed: w.region * region + w.balloon * balloon + w.edge * edge,
+        speed: w.region * region + w.balloon * balloon + w.edge * at.edge,
         region,
     }
 }

@@ -5,11 +5,13 @@
 //! [`crate::contours::measure`] are re-exported here, so `evolution::Field`,
 //! `evolution::Shape`, `evolution::regions` and the rest keep working.
 
+pub mod edit;
 pub mod engine;
 pub mod evolver;
 pub mod explicit;
 pub mod forces;
 pub mod implicit;
+mod initial;
 pub mod params;
 pub mod remesh;
 pub mod schedule;
@@ -18,7 +20,8 @@ pub use crate::contours::measure;
 pub use crate::contours::measure::{regions, Region};
 pub use crate::image::{find_seeds, Field, IntensityModel, Modality, Polarity, Pyramid};
 pub use crate::shape::Shape;
+pub use edit::{Edit, FrameEvent};
 pub use engine::{Engine, Frame};
-pub use evolver::{Edit, Evolver, FrameEvent};
+pub use evolver::Evolver;
 pub use forces::ForceWeights;
 pub use params::{EvolveError, Mode, Params};

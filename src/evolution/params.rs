@@ -4,7 +4,7 @@
 use super::forces::ForceWeights;
 use crate::contours::BroadPhaseKind;
 use crate::geometry::Point;
-use crate::image::{Modality, Polarity};
+use crate::image::{Modality, ModelParams, Polarity};
 use crate::shape::Shape;
 
 /// How topology may change.
@@ -86,6 +86,19 @@ fn default_local() -> bool {
 
 fn default_mode() -> Mode {
     Mode::Adaptive
+}
+
+impl Params {
+    /// The image's part of the parameters: what [`crate::image::ImageModel::prepare`] reads.
+    pub fn model_params(&self) -> ModelParams {
+        ModelParams {
+            polarity: self.polarity,
+            modality: self.modality,
+            local: self.local,
+            local_radius: self.local_radius,
+            coarsest_side: self.coarsest_side,
+        }
+    }
 }
 
 impl Default for Params {
@@ -227,7 +240,10 @@ fn memory_limit() -> Option<u64> {
         };
         // SAFETY: getrlimit only writes the struct it is given.
         let ok = unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut r) } == 0;
-        (ok && r.rlim_cur != libc::RLIM_INFINITY).then_some(r.rlim_cur as u64)
+        // rlim_t is u64 here but not on every unix.
+        #[allow(clippy::unnecessary_cast)]
+        let limit = r.rlim_cur as u64;
+        (ok && r.rlim_cur != libc::RLIM_INFINITY).then_some(limit)
     };
     #[cfg(not(unix))]
     let address_space = None;

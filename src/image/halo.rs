@@ -30,18 +30,15 @@ pub const HALO_REACH: f64 = 0.2;
 /// The clipped phase-contrast image with the halo *between* touching cells lifted to
 /// the background level `b`. Where cells touch, the halo is a ridge too narrow to reach
 /// the background grey (the optics blur it into the cells on both sides), and it would
-/// read as cell: on the public case the channels between touching bacteria are 30–95
-/// grey levels, the background 136, the cells 0–10, so a wrap kept the four cells as one
-/// (Dice 0.84). The white top-hat I − open(I) of the lightly blurred image (open = the
+/// read as cell: a wrap kept touching bacteria as one. The white top-hat I − open(I) of the lightly blurred image (open = the
 /// max filter of the min filter over a square of half-side h = [`HALO_REACH`] · r, r the
 /// objects' mean half-width, [`half_width`]) is large only on bright structures narrower
 /// than 2h + 1 between dark ones — the channels and the pockets between cell tips — and
 /// zero on the halo around a lone cell (its bright side is wide). Adding [`HALO_LIFT`]
 /// times it, clipped at `b`, moves those ridges to the background side, and the
-/// adaptive engine opens holes there (`explicit::nucleate`): the wrap parts the cells
-/// (Dice 0.84 → 0.90; with the level at the midpoint, h from 0.15 to 0.5 r and a lift
-/// from 1.5 to 3 measured 0.84–0.90: a wider square or a stronger lift also eats into
-/// the cells' flanks along the channel).
+/// adaptive engine opens holes there (`explicit::nucleate`): the wrap parts the cells. A
+/// wider square or a stronger lift also eats into the cells' flanks along the channel
+/// (`docs/decisions.md`).
 pub fn lift_narrow_halo(image: &Field, polarity: Polarity, b: f64) -> Field {
     let model = IntensityModel::learn(image, polarity, None, None);
     // The scale unclamped: the channels widen with the pixel size like the cells.

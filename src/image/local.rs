@@ -37,19 +37,16 @@
 //!
 //! Known limit: a dim object touching a brighter one loses the strip within ⌈r/2⌉ of
 //! its bright partner, whose brightness sets e there (tests/real_microscopy.rs measures
-//! it). The boxes are separable filters (a monotone deque per row and column) and a
-//! summed-area table, computed once per pyramid level; a sample is two bilinear reads.
+//! it). The boxes are separable filters ([`super::filters`]), computed once per pyramid
+//! level; a sample is two bilinear reads.
 //!
-//! We chose this over localized region means (Lankton & Tannenbaum 2008), whose means
-//! depend on the moving contour and would need new summed-area tables every frame, and
-//! over region-scalable fitting (Li et al. 2008), which needs two convolutions per
-//! iteration: both cost O(pixels) per frame, ours once per level. Measured on the public
-//! fluorescence case (dsb2018_nuclei, by thresholding alone, before the contour): the
-//! global level gives Dice 0.86 at best; half the local extreme over a box of half-side
-//! 5 gives 0.907 (0.90 at 3 or 8); a local mean with the same bounds 0.90–0.92 for r
-//! between 8 and 16, but it moves every edge of our synthetic cases off the midpoint
-//! (spiral_grow Dice 0.998 → 0.949 in the full evolution). In the full evolution the wrap
-//! on dsb2018_nuclei went from Dice 0.73 (global) to 0.90.
+//! We chose this over localized region means (Lankton & Tannenbaum, "Localizing
+//! region-based active contours", 2008), whose means depend on the moving contour and
+//! would need new box sums every frame, and over region-scalable fitting (Li et al.,
+//! "Minimization of region-scalable fitting energy for image segmentation", 2008),
+//! which needs two convolutions per iteration: both cost O(pixels) per frame, ours once
+//! per level. A local *mean* also moves the edge of a blurred step off its midpoint. The
+//! figures are in `docs/decisions.md`.
 
 use super::field::Field;
 use super::filters::{box_extreme, box_mean};
@@ -59,12 +56,8 @@ use super::noise::noise_sigma;
 
 /// How many noise standard deviations the local level keeps from the background. A
 /// background pixel passes four with odds of 3 in 10⁵, and a stray vertex there is
-/// pulled back by its neighbours. Measured (wrap Dice; instance SEG): dsb2018_nuclei
-/// 0.916 → 0.922 (0.805 → 0.806) from six to four; the same image with Gaussian noise
-/// of σ 6 and 12 grey levels added, whose dim nuclei fell under a six-σ floor, 0.868 →
-/// 0.915 and 0.637 → 0.803 (0.716 → 0.781, 0.464 → 0.664). Three gains more on the
-/// noisiest (0.886) but the dsb2018 wrap then needs 274 frames (240 at four, 223 at
-/// six). The synthetic cases and the phase-contrast ones do not change.
+/// pulled back by its neighbours; six lost the dim nuclei of noisy images, three costs
+/// frames (`docs/decisions.md`).
 pub const FLOOR_SIGMAS: f64 = 4.0;
 
 /// The smallest distance of the local level from the background: [`FLOOR_SIGMAS`]
@@ -88,12 +81,10 @@ pub fn floor(fine: &Field, model: &IntensityModel, modality: Modality) -> f64 {
 /// How far from the local background b the level may lie, in global half contrasts
 /// (the cap of the module doc). In fluorescence three: a bright nucleus is then cut at
 /// its own share of its contrast rather than at the global level, which took its
-/// out-of-focus glow (on the public case bright nuclei came out at twice their annotated
-/// area). Measured on dsb2018 with the share of [`share`]: wrap Dice 0.915 at one (the
-/// global level), 0.916 from two up; instance SEG 0.755 at two, 0.776 at three, four
-/// and without a cap. One, the global level itself, for every other kind: a looser cap
-/// lets the textured insides of phase-contrast cells and of our synthetic cases read as
-/// background (synthetic mean Dice 0.994 → 0.970 at two).
+/// out-of-focus glow (bright nuclei came out at twice their annotated area). One, the
+/// global level itself, for every other kind: a looser cap lets the textured insides of
+/// phase-contrast cells and of the synthetic cases read as background
+/// (`docs/decisions.md`).
 pub fn reach(modality: Modality) -> f64 {
     match modality {
         Modality::Fluorescence => 3.0,
@@ -146,10 +137,8 @@ impl LevelRule {
 /// bodies whose projected thickness, and so their signal, falls to nothing at the rim
 /// (a nucleus's brightness, a cell's phase shift): on a lens-shaped profile half the
 /// peak lies at 0.87 of the radius, 0.4 at 0.92, so 0.4 of the contrast in fluorescence,
-/// phase contrast and bright field. On the public cases: wrap Dice dsb2018 0.916 →
-/// 0.915, ecoli 0.902 → 0.906, instance SEG 0.717 → 0.755 and 0.818 → 0.823 (0.45
-/// and 0.35 measured 0.748 and 0.738 on dsb2018); the synthetic cases, generic, keep
-/// the midpoint.
+/// phase contrast and bright field (`docs/decisions.md`); the generic kind keeps the
+/// midpoint.
 pub fn share(modality: Modality) -> f64 {
     match modality {
         Modality::Generic => 0.5,

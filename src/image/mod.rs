@@ -9,6 +9,9 @@
 //! distance transform ([`distance`]), persistent maxima ([`maxima`]), the seeds' basins
 //! ([`seeds`], [`outline`]) and their cuts at notches ([`declump`]).
 //!
+//! [`model::ImageModel`] gathers what an engine reads, prepared once
+//! ([`ImageModel::prepare`]): the evolver and the automatic seeds both start from it.
+//!
 //! Nothing here knows contours or engines: the evolution reads the image through this
 //! layer only.
 
@@ -22,8 +25,10 @@ pub mod intensity;
 pub mod local;
 pub mod maxima;
 pub mod modality;
+pub mod model;
 pub mod noise;
 pub mod outline;
+mod patch;
 pub mod scale;
 pub mod seeds;
 
@@ -31,4 +36,5 @@ pub use field::{Field, Pyramid};
 pub use intensity::{IntensityModel, Polarity};
 pub use local::Decision;
 pub use modality::Modality;
+pub use model::{ImageModel, LevelView, ModelKind, ModelParams, Probe};
 pub use seeds::find_seeds;

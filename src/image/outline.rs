@@ -3,6 +3,7 @@
 //! (Douglas–Peucker).
 
 use crate::geometry::Point;
+use std::collections::HashSet;
 
 /// The outline (pixel corners, region on one side) of the 4-connected part of basin `l`
 /// that holds pixel `at`, after removing its pixels that touch another basin, so
@@ -41,24 +42,36 @@ pub(crate) fn basin_outline(
     if !keep(ax, ay) {
         return None;
     }
-    let part = |kept: &dyn Fn(isize, isize) -> bool| {
-        let mut inside = std::collections::HashSet::new();
-        let mut stack = vec![(ax, ay)];
-        inside.insert((ax, ay));
-        while let Some((x, y)) = stack.pop() {
-            for (nx, ny) in [(x + 1, y), (x - 1, y), (x, y + 1), (x, y - 1)] {
-                if !inside.contains(&(nx, ny)) && kept(nx, ny) {
-                    inside.insert((nx, ny));
-                    stack.push((nx, ny));
-                }
+    let inside = without_corner_pixels(part_of((ax, ay), &keep), (ax, ay));
+    if inside.len() < 9 {
+        return None;
+    }
+    crack_ring(&inside)
+}
+
+/// Pixels as (x, y).
+type Pixels = HashSet<(isize, isize)>;
+
+/// The 4-connected part of the pixels `kept` holding pixel `at`.
+fn part_of(at: (isize, isize), kept: &dyn Fn(isize, isize) -> bool) -> Pixels {
+    let mut inside = HashSet::new();
+    let mut stack = vec![at];
+    inside.insert(at);
+    while let Some((x, y)) = stack.pop() {
+        for (nx, ny) in [(x + 1, y), (x - 1, y), (x, y + 1), (x, y - 1)] {
+            if !inside.contains(&(nx, ny)) && kept(nx, ny) {
+                inside.insert((nx, ny));
+                stack.push((nx, ny));
             }
         }
-        inside
-    };
-    let mut inside = part(&keep);
-    // Two pixels meeting only at a corner would make the outline pass that corner twice
-    // (a ring touching itself, which the contour set refuses): drop one of each such
-    // pair until none is left, then keep the peak's part.
+    }
+    inside
+}
+
+/// Two pixels meeting only at a corner would make the outline pass that corner twice
+/// (a ring touching itself, which the contour set refuses): drops one of each such pair
+/// until none is left, then keeps the part holding `at`.
+fn without_corner_pixels(mut inside: Pixels, at: (isize, isize)) -> Pixels {
     loop {
         let pinched: Vec<(isize, isize)> = inside
             .iter()
@@ -70,21 +83,23 @@ pub(crate) fn basin_outline(
                         && !inside.contains(&(x, y + dy))
                 })
             })
-            .filter(|&p| p != (ax, ay))
+            .filter(|&p| p != at)
             .collect();
         if pinched.is_empty() {
-            break;
+            return inside;
         }
-        let kept: std::collections::HashSet<_> = inside
+        let kept: Pixels = inside
             .iter()
             .copied()
             .filter(|p| !pinched.contains(p))
             .collect();
-        inside = part(&|x, y| kept.contains(&(x, y)));
+        inside = part_of(at, &|x, y| kept.contains(&(x, y)));
     }
-    if inside.len() < 9 {
-        return None;
-    }
+}
+
+/// The outline of the 4-connected pixels `inside` by crack following, simplified; `None`
+/// if the walk does not close or leaves fewer than four corners.
+fn crack_ring(inside: &Pixels) -> Option<Vec<Point>> {
     let &(sx, sy) = inside.iter().min_by_key(|&&(x, y)| (y, x))?;
     let is_in = |x: isize, y: isize| inside.contains(&(x, y));
     // Crack following with the region on the right: at corner (vx, vy) heading d, the

@@ -19,20 +19,17 @@
 //! Each seed's shape is its basin of that watershed (pixels flooded from the peaks in
 //! decreasing distance), less the pixels touching another basin, outlined and simplified
 //! (Douglas–Peucker, 0.75 px): touching objects start already divided at their neck, so
-//! where the line between them falls is not decided by which front gets there first
-//! (on the phase-contrast bacteria of `ecoli_phase_early` that moved SEG from 0.65 to
-//! 0.76 in the instance run). Seeds thinner than [`BASIN_PEAK`] (specks of a textured
-//! nucleus) and basins of fewer than nine pixels get a disk of half the peak's distance
-//! instead: as basins, the specks of textured dim nuclei stayed fragments held apart
-//! (mahotas_nuclear: 126 objects with basins for every seed, 113 from a 3 px peak, 90
-//! from 4 px, 94 with disks only; dsb2018 SEG 0.694 / 0.681 / 0.694 / 0.687).
+//! where the line between them falls is not decided by which front gets there first.
+//! Seeds thinner than [`BASIN_PEAK`] (specks of a textured nucleus) and basins of fewer
+//! than nine pixels get a disk of half the peak's distance instead: as basins, the specks
+//! of textured dim nuclei stayed fragments held apart (`docs/decisions.md`).
 //!
 //! Nuclei side by side along their short axes make a union whose distance transform
 //! peaks once, at the contact: no persistence splits them. Their basins are then cut at
 //! the notches of their outline when the parts are good ellipses ([`super::declump`]).
 //! A basin's outline drops pixels that meet the rest only at a corner, so the ring never
 //! passes a corner twice: such a ring touches itself, the contour set refuses it, and
-//! the seed was lost (one nucleus on dsb2018_nuclei, three on mahotas_nuclear).
+//! the seed was lost.
 //!
 //! In phase contrast the mask keeps only pixels ¾ of a local contrast past the level
 //! ([`CORE_PHASE`]): touching cells are separated there by grey gaps that read as
@@ -40,20 +37,18 @@
 
 use super::declump;
 use super::distance::distance_transform;
-use super::field::{neighbours4, Field, Pyramid};
-use super::intensity::{IntensityModel, Polarity};
-use super::local;
+use super::field::{neighbours4, Field};
+use super::intensity::Polarity;
 use super::maxima::persistent_maxima;
-use super::modality::{self, Modality};
+use super::modality::Modality;
+use super::model::{ImageModel, ModelParams};
 use super::outline::basin_outline;
-use super::scale::object_scale;
 use crate::geometry::Point;
 use crate::shape::Shape;
 
 /// Smallest height of a maximum above the neck that joins it to a higher one, for both
 /// to be seeds, in object radii (the necks between touching nuclei deepen with their
-/// size). On the public fluorescence case (r = 11 px) 1/16 r = 0.7 px: instance SEG
-/// 0.755 at 1 px → 0.769; 1/12 and 1/20 of r measured 0.760 and 0.768.
+/// size; `docs/decisions.md`).
 pub const PERSISTENCE: f32 = 1.0 / 16.0;
 
 /// Smallest distance to the background at a seed (pixels): thinner specks are noise.
@@ -69,13 +64,21 @@ pub const BASIN_PEAK: f32 = 4.0;
 pub const CORE_PHASE: f64 = 0.75;
 
 /// One seed per object found in `image`: its watershed basin (or a disk, for a tiny one).
+/// The image is prepared as for an evolution without shapes ([`ImageModel::prepare`]
+/// with [`ModelParams::seeds`]), so the seeds see the mask the evolution will see.
 pub fn find_seeds(image: &Field, polarity: Polarity, modality: Modality) -> Vec<Shape> {
-    let image = modality::for_modality(image, polarity, modality, None);
-    let fine = Pyramid::new(&image, usize::MAX, 1).levels.remove(0).image;
-    let model = IntensityModel::learn(&fine, polarity, None, None);
-    let r = object_scale(&fine, &model).round() as usize;
-    let rule = local::LevelRule::new(&fine, &model, modality);
-    let level = local::decision_field(&fine, r, &model, &rule);
+    let params = ModelParams::seeds(polarity, modality);
+    seeds_of(&ImageModel::prepare(image, &params, &[]))
+}
+
+/// One seed per object of the prepared `image`, from its full-resolution level and
+/// local decision level (none without local levels).
+fn seeds_of(image: &ImageModel) -> Vec<Shape> {
+    let (Some(radius), Some(level)) = (image.radius(), image.decision(0)) else {
+        return Vec::new();
+    };
+    let (fine, model, modality) = (image.fine(), image.global(), image.params().modality);
+    let r = radius.round() as usize;
     let bright = model.object >= model.background;
     let sign = if bright { 1.0 } else { -1.0 };
     // Phase contrast: only the cells' cores, well past the level, so the blurred gaps

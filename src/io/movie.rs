@@ -174,26 +174,15 @@ fn decode_error(name: &str, reason: String) -> MovieError {
     .into()
 }
 
-/// The image files of a folder (PNG, JPEG, TIFF by extension), in name order.
+/// The image files of a folder, in name order (as `batch` lists them).
 fn image_files(dir: &Path) -> Result<Vec<PathBuf>, MovieError> {
-    let io = |source| LoadError::Io {
-        path: dir.display().to_string(),
-        source,
-    };
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(io)?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| {
-            p.is_file()
-                && p.extension().and_then(|e| e.to_str()).is_some_and(|e| {
-                    ["png", "jpg", "jpeg", "tif", "tiff"]
-                        .iter()
-                        .any(|x| e.eq_ignore_ascii_case(x))
-                })
-        })
-        .collect();
-    files.sort();
-    Ok(files)
+    super::folder::list_images(dir).map_err(|source| {
+        LoadError::Io {
+            path: dir.display().to_string(),
+            source,
+        }
+        .into()
+    })
 }
 
 enum Reader {

@@ -13,6 +13,7 @@
 use crate::contours::{ContourId, ContourSet};
 use crate::evolution::regions;
 use crate::geometry::Point;
+use crate::io::ExportError;
 use std::io::Write;
 
 const VERSION: u16 = 228;
@@ -20,8 +21,12 @@ const TYPE_POLYGON: u8 = 0;
 const TYPE_RECT: u8 = 1;
 const SUB_PIXEL_RESOLUTION: u16 = 128;
 
-/// The ROI set of every region of `set` as zip bytes.
-pub fn roi_zip(set: &ContourSet) -> Vec<u8> {
+/// The largest coordinate ImageJ's 16-bit ROI header and integer coordinates hold.
+pub const MAX_ROI_COORDINATE: f64 = i16::MAX as f64;
+
+/// The ROI set of every region of `set` as zip bytes; refused when a region reaches past
+/// [`MAX_ROI_COORDINATE`] (the header would clamp and the coordinates wrap).
+pub fn roi_zip(set: &ContourSet) -> Result<Vec<u8>, ExportError> {
     let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
     let options =
         zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
@@ -30,6 +35,14 @@ pub fn roi_zip(set: &ContourSet) -> Vec<u8> {
             .chain(r.holes.iter().copied())
             .map(|id: ContourId| set.ring_points(id))
             .collect();
+        let far = rings
+            .iter()
+            .flatten()
+            .map(|p| p.x.max(p.y))
+            .fold(0.0, f64::max);
+        if far >= MAX_ROI_COORDINATE {
+            return Err(ExportError::RoiTooFar(far.ceil() as u64));
+        }
         let bytes = if rings.len() == 1 {
             polygon_roi(&rings[0])
         } else {
@@ -40,7 +53,7 @@ pub fn roi_zip(set: &ContourSet) -> Vec<u8> {
             .expect("zip entry in memory");
         zip.write_all(&bytes).expect("zip write in memory");
     }
-    zip.finish().expect("zip in memory").into_inner()
+    Ok(zip.finish().expect("zip in memory").into_inner())
 }
 
 /// The 64-byte header with the bounding box of `rings`.
@@ -106,4 +119,35 @@ fn shape_roi(rings: &[Vec<Point>]) -> Vec<u8> {
         b.extend_from_slice(&v.to_be_bytes());
     }
     b
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Aabb;
+
+    fn set_with(ring: &[Point]) -> ContourSet {
+        let domain = Aabb {
+            min: Point::new(0.0, 0.0),
+            max: Point::new(40_000.0, 100.0),
+        };
+        let mut set = ContourSet::new(domain, 4.0);
+        set.add_ring(ring).unwrap();
+        set
+    }
+
+    /// Issue 24.17: a region past x = 32,767 is refused, not written with a clamped
+    /// header and wrapped coordinates.
+    #[test]
+    fn regions_past_the_16_bit_range_are_refused() {
+        let square = |x: f64| {
+            [(0.0, 0.0), (3.0, 0.0), (3.0, 3.0), (0.0, 3.0)]
+                .map(|(dx, dy)| Point::new(x + dx, 10.0 + dy))
+        };
+        assert!(roi_zip(&set_with(&square(100.0))).is_ok());
+        assert_eq!(
+            roi_zip(&set_with(&square(33_000.0))),
+            Err(ExportError::RoiTooFar(33_003))
+        );
+    }
 }

@@ -25,16 +25,17 @@ pub mod directive1;
 pub mod directive2;
 pub mod events;
 pub mod motion_region;
+mod plan;
 pub mod policy;
 pub mod preserve;
 mod quiet;
 
 use crate::contours::{ContourSet, Ring, VertexId, NIL};
 use crate::geometry::{edges_clash, folds_back, Aabb, Point};
-use directive1::{find_crossings, guard_crossings, NewEdge};
 pub use events::TopologyEvent;
 use events::{assign_ids, NewLoop, OldRing};
 pub use motion_region::MotionRegion;
+use plan::MovePlan;
 pub use policy::TopologyPolicy;
 
 /// Why a move was refused (the set is unchanged).
@@ -107,6 +108,13 @@ impl ContourSet {
     /// Removes vertex `v`, joining its neighbours by a straight edge: the motion of `v`
     /// onto that edge, corrected like any other move.
     pub fn remove_vertex(&mut self, v: VertexId) -> Result<Vec<TopologyEvent>, MoveError> {
+        self.check_removal(v)?;
+        self.replace_vertex(v, None)
+    }
+
+    /// Why `v` cannot be removed, if it cannot: no such vertex, a triangle, or an edge
+    /// over the bound would replace it.
+    fn check_removal(&self, v: VertexId) -> Result<(), MoveError> {
         if !self.is_alive(v) {
             return Err(MoveError::NoVertex(v));
         }
@@ -120,7 +128,7 @@ impl ContourSet {
         if p.dist(n) > self.max_edge {
             return Err(MoveError::EdgeTooLong);
         }
-        self.replace_vertex(v, None)
+        Ok(())
     }
 
     /// Inserts a vertex on the edge from `a` to its successor, at parameter `t` in (0, 1).
@@ -183,116 +191,6 @@ impl ContourSet {
         let mut plan = self.plan_move(v, to)?;
         let moved = self.commit_move(&plan, v, to);
         Ok(self.settle_move(&mut plan, moved))
-    }
-
-    /// Everything a move decides before anything changes: the motion region, the
-    /// crossings of c' (Directive 1), the rings inside M (Directive 2), the rings whose
-    /// labels may change.
-    #[inline(always)]
-    fn plan_move(&mut self, v: u32, to: Option<Point>) -> Result<MovePlan, MoveError> {
-        let (pid, nid) = (self.prev[v as usize], self.next[v as usize]);
-        let (p, o, n) = (
-            self.pos[pid as usize],
-            self.pos[v as usize],
-            self.pos[nid as usize],
-        );
-        let label = self.label[v as usize];
-        if let Some(q) = to {
-            if q == p || q == n {
-                return Err(Degeneracy::OnNeighbour.into());
-            }
-            // The two new edges must not fold onto each other at q.
-            if folds_back(q, p, n) {
-                return Err(Degeneracy::Overlap.into());
-            }
-        }
-        let mr = MotionRegion::new(p, o, n, to);
-        let new_edges_buf: [NewEdge; 2];
-        let new_edges: &[NewEdge] = match to {
-            Some(q) => {
-                new_edges_buf = [(pid, p, v, q), (v, q, nid, n)];
-                &new_edges_buf
-            }
-            None => {
-                new_edges_buf = [(pid, p, nid, n), (pid, p, nid, n)];
-                &new_edges_buf[..1]
-            }
-        };
-        let (path, k) = mr.new_path();
-        let mut cand = std::mem::take(&mut self.scratch);
-        self.edges_near(&Aabb::of(&path[..k]), &mut cand);
-
-        // Crossings are rare (a topology event or a refused move): an empty Vec costs
-        // nothing until one is found.
-        let mut crossings = Vec::new();
-        let mut found = find_crossings(self, &mr, new_edges, &cand, [pid, v], &mut crossings);
-        if found.is_ok() && !crossings.is_empty() {
-            found = guard_crossings(self, new_edges, &crossings, v, &mr);
-            // Candidates come in a broad-phase-specific order; the result must not.
-            crossings.sort_unstable_by(|a, b| (a.k, a.t).partial_cmp(&(b.k, b.t)).unwrap());
-        }
-        if let Err(e) = found {
-            self.scratch = cand;
-            return Err(e.into());
-        }
-
-        // Directive 2 candidates, decided before anything changes.
-        let mut involved_buf: Vec<u32> = Vec::new();
-        let involved: &[u32] = if crossings.is_empty() {
-            std::slice::from_ref(&label)
-        } else {
-            involved_buf.push(label);
-            for c in &crossings {
-                let l = self.label[c.edge as usize];
-                if !involved_buf.contains(&l) {
-                    involved_buf.push(l);
-                }
-            }
-            &involved_buf
-        };
-        let mut inside: Vec<(u32, i32)> = Vec::new();
-        // A ring inside M has every vertex in M's box; the edge query saw all vertices
-        // within half the reach of c', which holds that box unless the move was long.
-        let m_box = mr.bounds();
-        let searched = Aabb::of(&path[..k]).expand(0.5 * self.reach);
-        if !(searched.contains(m_box.min) && searched.contains(m_box.max)) {
-            self.vertices_near(&m_box, &mut cand);
-        }
-        self.rings_inside(&mr, &m_box, &cand, involved, &mut inside);
-        inside.sort_unstable();
-        let moving_inside = if crossings.is_empty() {
-            self.moving_ring_inside(&mr, &m_box, v, self.ring(label).len)
-        } else {
-            None
-        };
-        self.scratch = cand;
-        let old: Vec<OldRing> = if crossings.is_empty() && moving_inside.is_none() {
-            Vec::new() // the common case: nothing to relabel
-        } else {
-            involved
-                .iter()
-                .map(|&id| {
-                    let r = self.ring(id);
-                    OldRing {
-                        id,
-                        len: r.len,
-                        outer: self.loop_is_outer(r.anchor, r.area2),
-                    }
-                })
-                .collect()
-        };
-        Ok(MovePlan {
-            pid,
-            nid,
-            p,
-            o,
-            n,
-            label,
-            crossings,
-            inside,
-            moving_inside,
-            old,
-        })
     }
 
     /// The move itself: c' replaces c (the stored area follows). Returns the moved vertex,
@@ -501,25 +399,6 @@ impl ContourSet {
 /// Parts one edge is split into at most: far more than an edge inside any accepted image
 /// needs (its diagonal over the smallest edge bound).
 const MAX_SPLIT: f64 = (1u32 << 20) as f64;
-
-/// What [`ContourSet::replace_vertex`] decided before changing anything.
-struct MovePlan {
-    pid: u32,
-    nid: u32,
-    p: Point,
-    o: Point,
-    n: Point,
-    /// The moving vertex's ring.
-    label: u32,
-    /// Directive 1's crossings of c', sorted along it.
-    crossings: Vec<directive1::Crossing>,
-    /// Directive 2: rings inside M with M's winding over them.
-    inside: Vec<(u32, i32)>,
-    /// The moving ring itself inside M (a ring swept away), with M's winding.
-    moving_inside: Option<i32>,
-    /// The rings whose labels may change, as they were.
-    old: Vec<OldRing>,
-}
 
 /// The event for ring `id` deleted by Directive 2 with M's winding `w` over it.
 fn deletion_event(id: u32, outer: bool, w: i32, survivor: Option<u32>) -> TopologyEvent {

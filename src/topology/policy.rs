@@ -91,19 +91,10 @@ impl ContourSet {
         v: VertexId,
         policy: TopologyPolicy,
     ) -> Result<Vec<TopologyEvent>, MoveError> {
-        if policy == TopologyPolicy::ADAPTIVE || !self.is_alive(v) {
+        if policy == TopologyPolicy::ADAPTIVE {
             return self.remove_vertex(v);
         }
-        if self.ring(self.label[v as usize]).len <= 3 {
-            return Err(MoveError::TooFewVertices);
-        }
-        let (p, n) = (
-            self.pos[self.prev[v as usize] as usize],
-            self.pos[self.next[v as usize] as usize],
-        );
-        if p.dist(n) > self.max_edge {
-            return Err(MoveError::EdgeTooLong);
-        }
+        self.check_removal(v)?;
         self.replace_under(v, None, policy)
     }
 

@@ -48,6 +48,10 @@ pub struct TrackSettings {
     pub auto_seeds: bool,
     /// Pick up new cells with automatic seeds on every later frame.
     pub new_cells: bool,
+    /// Pyramid levels a frame after the first evolves through (frame 0 uses the full
+    /// pyramid of its parameters): 1 is the full resolution only, each more level
+    /// carries a contour over a move twice as large.
+    pub levels: usize,
 }
 
 impl TrackSettings {
@@ -61,6 +65,7 @@ impl TrackSettings {
             shrink: 2.0,
             auto_seeds: true,
             new_cells: true,
+            levels: 2,
         }
     }
 }
@@ -204,7 +209,12 @@ impl Tracker {
         if shapes.is_empty() {
             return Ok((pieces, 0));
         }
-        let mut ev = match Evolver::new(image, shapes, self.settings.params.clone()) {
+        let mut params = self.settings.params.clone();
+        if self.frame > 0 {
+            let side = image.width.min(image.height);
+            params.coarsest_side = (side >> self.settings.levels.max(1).saturating_sub(1)).max(1);
+        }
+        let mut ev = match Evolver::new(image, shapes, params) {
             Ok(ev) => ev,
             Err(EvolveError::EmptyInit) => return Ok((pieces, 0)),
             Err(e) => return Err(e),

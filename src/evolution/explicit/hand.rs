@@ -19,7 +19,7 @@ impl<M: Motion> Explicit<M> {
     /// topology event (a remesh joined it to a neighbour), the vertex of its contour
     /// nearest to where it was; after a merge or split the drag has done its work
     /// (`None`).
-    pub fn hand_drag(
+    pub(super) fn drag(
         &mut self,
         v: u32,
         to: Point,
@@ -160,7 +160,7 @@ impl<M: Motion> Explicit<M> {
     /// disc and were pushed again, a cascade that grew faster than any power of the
     /// radius (40 px: 8 s, 60 px: over a minute). The stroke is clipped to the image
     /// grown by the radius, beyond which it touches nothing.
-    pub fn brush(
+    pub(super) fn brush_stroke(
         &mut self,
         from: Point,
         to: Point,

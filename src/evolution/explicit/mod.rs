@@ -31,8 +31,7 @@ use super::remesh::remesh;
 use crate::contours::ContourSet;
 use crate::geometry::{Aabb, Point};
 use crate::image::field::Pyramid;
-use crate::image::local::Decision;
-use crate::image::IntensityModel;
+use crate::image::ImageModel;
 use crate::topology::{MotionRegion, TopologyEvent};
 use std::sync::Arc;
 
@@ -43,10 +42,8 @@ const MIN_GAIN: f32 = 0.125;
 #[derive(Clone)]
 pub struct Explicit<M: Motion> {
     set: ContourSet,
-    pyramid: Arc<Pyramid>,
-    /// Per pyramid level, the local decision level of the region term (empty: global).
-    decision: Arc<Vec<Decision>>,
-    model: IntensityModel,
+    /// What the forces read of the image.
+    image: Arc<ImageModel>,
     weights: ForceWeights,
     /// Largest step per frame, as a fraction of the level's grid spacing.
     step: f64,
@@ -68,21 +65,12 @@ fn spacing(level: usize) -> (f64, f64, f64) {
 }
 
 impl<M: Motion> Explicit<M> {
-    /// An engine moving the rings of `set` over `pyramid`.
-    pub fn new(
-        set: ContourSet,
-        pyramid: Arc<Pyramid>,
-        decision: Arc<Vec<Decision>>,
-        model: IntensityModel,
-        weights: ForceWeights,
-        step: f64,
-    ) -> Self {
+    /// An engine moving the rings of `set` under the forces of `image`.
+    pub fn new(set: ContourSet, image: Arc<ImageModel>, weights: ForceWeights, step: f64) -> Self {
         let bounds = set.domain();
         Explicit {
             set,
-            pyramid,
-            decision,
-            model,
+            image,
             weights,
             step,
             bounds,
@@ -104,8 +92,6 @@ impl<M: Motion> Explicit<M> {
         motions: &mut Vec<MotionRegion>,
     ) -> (f64, f64) {
         let scale = Pyramid::scale(level);
-        let field = &self.pyramid.levels[level];
-        let decision = self.decision.get(level);
         let max_step = self.step * scale;
         let w = self.weights;
         let (p, n) = (self.set.prev(v), self.set.next(v));
@@ -115,7 +101,8 @@ impl<M: Motion> Explicit<M> {
             self.set.position(n),
         );
         let normal = outward_normal(pp, x, pn);
-        let f = normal_speed(field, decision, &self.model, &w, x * (1.0 / scale), normal);
+        let probe = self.image.level(level).probe(x * (1.0 / scale), normal);
+        let f = normal_speed(&probe, &w);
         // Stretching pulls to the neighbours' midpoint; bending smooths that pull.
         let lap = (pp + pn) * 0.5 - x;
         let lap_p = (self.set.position(self.set.prev(p)) + x) * 0.5 - pp;
@@ -239,9 +226,7 @@ impl<M: Motion> Engine for Explicit<M> {
         }
         let events = nucleate::nucleate(
             &mut self.set,
-            &self.pyramid.levels[level],
-            self.decision.get(level),
-            &self.model,
+            &self.image.level(level),
             Pyramid::scale(level),
         );
         if !events.is_empty() {
@@ -253,6 +238,12 @@ impl<M: Motion> Engine for Explicit<M> {
     fn set_forces(&mut self, weights: ForceWeights, step: f64) {
         self.weights = weights;
         self.step = step;
+    }
+    fn hand_drag(&mut self, v: u32, to: Point, level: usize) -> (Vec<TopologyEvent>, Option<u32>) {
+        self.drag(v, to, level)
+    }
+    fn brush(&mut self, from: Point, to: Point, radius: f64, level: usize) -> Vec<TopologyEvent> {
+        self.brush_stroke(from, to, radius, level)
     }
 }
 

@@ -73,19 +73,9 @@ impl Motion for Adaptive {
         _: f64,
         events: &mut Vec<TopologyEvent>,
     ) -> f64 {
-        let from = set.position(v);
-        for f in [1.0, 0.5] {
-            let q = from.lerp(to, f);
-            match set.move_vertex(v, q) {
-                Ok(ev) => {
-                    events.extend(ev);
-                    return from.dist(q);
-                }
-                Err(MoveError::Degenerate(_)) => continue,
-                Err(_) => return 0.0,
-            }
-        }
-        0.0
+        shortened(set, v, to, &[1.0, 0.5], events, |s, v, q| {
+            s.move_vertex(v, q)
+        })
     }
     fn attempt(
         set: &mut ContourSet,
@@ -131,11 +121,7 @@ impl Motion for Preserve {
     /// Vertices that ended within two gaps of another part of the boundary (not their own
     /// neighbours).
     fn held(set: &ContourSet, scale: f64) -> usize {
-        let r = 2.0 * PRESERVE_GAP * scale;
-        let mut near = Vec::new();
-        set.vertices()
-            .filter(|&v| repulsion(set, v, r, &mut near, false) != Point::default())
-            .count()
+        held_near(set, scale, false)
     }
 }
 
@@ -155,19 +141,9 @@ impl Motion for Track {
         _: f64,
         events: &mut Vec<TopologyEvent>,
     ) -> f64 {
-        let from = set.position(v);
-        for f in [1.0, 0.5, 0.25] {
-            let q = from.lerp(to, f);
-            match set.move_vertex_under(v, q, TopologyPolicy::TRACKING) {
-                Ok(ev) => {
-                    events.extend(ev);
-                    return from.dist(q);
-                }
-                Err(MoveError::Degenerate(_) | MoveError::Held(_)) => continue,
-                Err(_) => return 0.0,
-            }
-        }
-        0.0
+        shortened(set, v, to, &[1.0, 0.5, 0.25], events, |s, v, q| {
+            s.move_vertex_under(v, q, TopologyPolicy::TRACKING)
+        })
     }
     fn attempt(
         set: &mut ContourSet,
@@ -179,12 +155,43 @@ impl Motion for Track {
     }
     /// Vertices that ended within two gaps of another object.
     fn held(set: &ContourSet, scale: f64) -> usize {
-        let r = 2.0 * PRESERVE_GAP * scale;
-        let mut near = Vec::new();
-        set.vertices()
-            .filter(|&v| repulsion(set, v, r, &mut near, true) != Point::default())
-            .count()
+        held_near(set, scale, true)
     }
+}
+
+/// Moves `v` towards `to` by the first share of the step in `shares` that `mv` accepts
+/// (a degenerate or held move is retried shorter); returns the distance moved.
+fn shortened(
+    set: &mut ContourSet,
+    v: u32,
+    to: Point,
+    shares: &[f64],
+    events: &mut Vec<TopologyEvent>,
+    mv: impl Fn(&mut ContourSet, u32, Point) -> Result<Vec<TopologyEvent>, MoveError>,
+) -> f64 {
+    let from = set.position(v);
+    for &f in shares {
+        let q = from.lerp(to, f);
+        match mv(set, v, q) {
+            Ok(ev) => {
+                events.extend(ev);
+                return from.dist(q);
+            }
+            Err(MoveError::Degenerate(_) | MoveError::Held(_)) => continue,
+            Err(_) => return 0.0,
+        }
+    }
+    0.0
+}
+
+/// Vertices within two gaps of another part of the boundary (with `others_only`, of
+/// another object).
+fn held_near(set: &ContourSet, scale: f64, others_only: bool) -> usize {
+    let r = 2.0 * PRESERVE_GAP * scale;
+    let mut near = Vec::new();
+    set.vertices()
+        .filter(|&v| repulsion(set, v, r, &mut near, others_only) != Point::default())
+        .count()
 }
 
 /// Push away from vertices of other parts within `r` (not the ring's own neighbours

@@ -17,15 +17,15 @@
 //! lost hole), exactly as any other contact.
 //!
 //! Choices: a quarter of the contrast past the level (score −0.5) and four pixels keep
-//! pixel noise from opening holes (the local level keeps at least six noise deviations
-//! from the background, so −0.5 is three deviations, over four pixels at once); only the
+//! pixel noise from opening holes (the local level keeps at least four noise deviations
+//! from the background, [`crate::image::local::FLOOR_SIGMAS`], so −0.5 is at least two
+//! deviations, over four pixels at once); only the
 //! adaptive engine nucleates (a new hole is a change of topology).
 
 use crate::contours::ContourSet;
 use crate::geometry::{fill_even_odd, Point};
-use crate::image::field::{neighbours8, Level};
-use crate::image::local::Decision;
-use crate::image::IntensityModel;
+use crate::image::field::neighbours8;
+use crate::image::LevelView;
 use crate::topology::TopologyEvent;
 
 /// Region score a pixel must reach (or go below, towards background) to open a hole.
@@ -35,16 +35,10 @@ pub const NUCLEATE_SCORE: f64 = 0.5;
 pub const NUCLEATE_PIXELS: usize = 4;
 
 /// Opens a hole ring at each piece of clear background inside the region of `set`, on
-/// pyramid level `field` (`scale` full-resolution pixels per level pixel). Returns the
+/// the pyramid level `view` shows (`scale` full-resolution pixels per level pixel). Returns the
 /// events (one [`TopologyEvent::HoleMade`] per hole).
-pub fn nucleate(
-    set: &mut ContourSet,
-    field: &Level,
-    decision: Option<&Decision>,
-    model: &IntensityModel,
-    scale: f64,
-) -> Vec<TopologyEvent> {
-    let image = &field.image;
+pub fn nucleate(set: &mut ContourSet, view: &LevelView, scale: f64) -> Vec<TopologyEvent> {
+    let image = view.image();
     let (w, h) = (image.width, image.height);
     let rings: Vec<Vec<Point>> = set
         .contour_ids()
@@ -55,13 +49,7 @@ pub fn nucleate(
                 .collect()
         })
         .collect();
-    let score = |i: usize| -> f64 {
-        let v = image.data[i] as f64;
-        match decision {
-            Some(d) => (v - d.level.data[i] as f64) * d.sign / (d.half.data[i] as f64).max(1e-6),
-            None => model.score(v),
-        }
-    };
+    let score = |i: usize| view.pixel_score(i);
     // Inside, and clearly background (scored only inside; listed, as they are few).
     let mut inside = vec![false; w * h];
     let mut listed = Vec::new();

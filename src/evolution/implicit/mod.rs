@@ -52,7 +52,7 @@ use super::engine::{Engine, Frame};
 use crate::contours::{BroadPhaseKind, ContourSet};
 use crate::geometry::{signed_area2, winding_number, Aabb, Point};
 use crate::image::field::Field;
-use crate::image::IntensityModel;
+use crate::image::{ImageModel, IntensityModel};
 use crate::shape::Shape;
 use crate::topology::TopologyEvent;
 use std::cmp::Reverse;
@@ -257,8 +257,15 @@ pub struct ImplicitEngine {
 }
 
 impl ImplicitEngine {
-    /// The engine over the fronts `state`, its contours in `domain`.
-    pub fn new(state: Implicit, domain: Aabb, broad_phase: BroadPhaseKind) -> Self {
+    /// The engine marching from the shapes `init` under the global model of `image` (on
+    /// its full-resolution level), its contours in `domain`.
+    pub fn new(
+        image: &ImageModel,
+        init: &[Shape],
+        domain: Aabb,
+        broad_phase: BroadPhaseKind,
+    ) -> Self {
+        let state = Implicit::new(image.fine(), image.global(), init);
         let rings = state.rings();
         ImplicitEngine {
             state,
@@ -346,6 +353,14 @@ impl Engine for ImplicitEngine {
     }
     fn set_forces(&mut self, _: super::forces::ForceWeights, _: f64) {}
     fn nucleate(&mut self, _: usize) -> Vec<TopologyEvent> {
+        Vec::new()
+    }
+    /// Contours extracted from the grid do not move by hand.
+    fn hand_drag(&mut self, _: u32, _: Point, _: usize) -> (Vec<TopologyEvent>, Option<u32>) {
+        (Vec::new(), None)
+    }
+    /// Contours extracted from the grid do not move by hand.
+    fn brush(&mut self, _: Point, _: Point, _: f64, _: usize) -> Vec<TopologyEvent> {
         Vec::new()
     }
 }

@@ -35,6 +35,11 @@ pub enum ExportError {
     /// A 16-bit label image holds at most 65,535 objects.
     #[error("more than 65,535 objects for a 16-bit label image")]
     TooManyLabels,
+    /// An ImageJ ROI holds coordinates below 32,767 px.
+    #[error(
+        "an object reaches {0} px; ImageJ ROI coordinates stop at 32,767 (export GeoJSON instead)"
+    )]
+    RoiTooFar(u64),
 }
 
 impl Format {
@@ -101,7 +106,7 @@ impl Format {
             Format::Geojson => out.geojson().into_bytes(),
             Format::Csv => out.csv().into_bytes(),
             Format::Overlay => out.overlay_png(image),
-            Format::Roi => crate::io::roi::roi_zip(out.set),
+            Format::Roi => crate::io::roi::roi_zip(out.set)?,
             Format::Labels => {
                 let tiff = path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
                     e.eq_ignore_ascii_case("tif") || e.eq_ignore_ascii_case("tiff")

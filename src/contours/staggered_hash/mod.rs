@@ -15,17 +15,13 @@
 //! boxes instead — c' grown by s/2, sides about |p − n| + s — and we take l = 3s: a move
 //! whose c' spans at most s/2 per axis reads one box, one spanning up to 2s at most two
 //! boxes per axis. Smaller boxes make the quiet move's region tighter (a shorter walk),
-//! larger ones make it one box more often. Measured (cachegrind, `examples/prof_moves.rs
-//! hash 600000 10000` minus 200000 moves, 10⁶ vertices, per move): l = 2.5s 830
-//! instructions and 0.46 last-level misses, 3s 782 and 0.34, 4s 800 and 0.35, 5s 824 and
-//! 0.29. We take the fewest instructions; the 4096² wrap (`cargo bench --bench scale --
-//! wrap adaptive hash`) takes the same time at 3s and 4s within this machine's noise.
+//! larger ones make it one box more often; 3s took the fewest instructions per move
+//! (`docs/decisions.md`).
 //!
 //! Table size: one table per system of at least twice the vertex count (the paper's
 //! measured optimum), a power of two, doubled as vertices are added. The four systems'
 //! buckets of one hash value sit side by side (bucket `4h + s`): boxes of the four systems
-//! around one place share cache lines (10⁶ vertices, l = 4s: 0.64 first-level misses per
-//! move against 0.80 with one table after another). An entry's box follows from its
+//! around one place share cache lines. An entry's box follows from its
 //! vertex's half-box, so hash collisions are filtered exactly and answers never hold
 //! duplicates.
 //!
@@ -33,13 +29,16 @@
 //! the plane onto a torus of 2^⌈b/2⌉ × 2^⌊b/2⌋ boxes (b = log2 of the table size) and
 //! take the box's position on it. A move reads a few neighbouring boxes, which land in
 //! neighbouring buckets instead of random ones, and boxes collide only when a whole
-//! torus side apart — never for contours within 2^⌊b/2⌋ boxes (1,024 at 10⁶ vertices).
-//! Measured (cachegrind, `prof_moves hash … 10000`, 10⁶ vertices, l = 4s): 0.33
-//! last-level cache misses per move against 0.82 with equation 2's multipliers (8% of
-//! moves then met a bucket shared with another box and counted it box by box).
+//! torus side apart — never for contours within 2^⌊b/2⌋ boxes (1,024 at 10⁶ vertices),
+//! so a move meets far fewer cache misses than with equation 2's multipliers
+//! (`docs/decisions.md`).
 
-use super::broad_phase::{BroadPhase, Countable};
+use super::broad_phase::BroadPhase;
 use crate::geometry::{Aabb, Point};
+
+mod region;
+
+pub use region::HashRegion;
 
 const NIL: u32 = u32::MAX;
 /// Box side in units of the edge bound (see the module doc).
@@ -53,7 +52,7 @@ pub struct StaggeredHash {
     torus: Torus,
     /// `4 << bits` bucket heads: system s of hash value h at `4h + s`.
     head: Vec<u32>,
-    /// Nodes per bucket (the quiet-move certificate counts them, see [`Countable`]).
+    /// Nodes per bucket (the quiet-move certificate counts them, see [`crate::contours::Countable`]).
     fill: Vec<u32>,
     /// Per node `4 v + s`: list links and its bucket (`NIL` when absent).
     link_next: Vec<u32>,
@@ -366,65 +365,6 @@ impl BroadPhase for StaggeredHash {
 
     fn len(&self) -> usize {
         self.count
-    }
-}
-
-/// What the quiet-move certificate counts: the boxes a query reads. They are a rectangle
-/// of half-boxes, which is what a walk tests (one comparison per axis on the vertex's
-/// half-box, no look at its four boxes).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct HashRegion {
-    boxes: Reach,
-    /// Half-boxes `lo ..= lo + size` per axis (wide: 2c − o may leave i32's range).
-    lo: [i64; 2],
-    size: [u64; 2],
-}
-
-impl Countable for StaggeredHash {
-    type Region = HashRegion;
-
-    #[inline]
-    fn region(&self, b: &Aabb) -> Option<(HashRegion, u32)> {
-        let r = self.reach(b);
-        // Box c of the system with offset o holds half-boxes 2c − o and 2c − o + 1.
-        let (ox, oy) = ((r.sys & 1) as i64, (r.sys >> 1) as i64);
-        let region = HashRegion {
-            boxes: r,
-            lo: [2 * r.lo[0] as i64 - ox, 2 * r.lo[1] as i64 - oy],
-            size: [
-                (2 * (r.hi[0] as i64 - r.lo[0] as i64) + 1) as u64,
-                (2 * (r.hi[1] as i64 - r.lo[1] as i64) + 1) as u64,
-            ],
-        };
-        if r.lo == r.hi {
-            return Some((region, self.fill[self.bucket_of(r.lo, r.sys) as usize]));
-        }
-        if r.boxes() > 4 {
-            return None;
-        }
-        // A bucket shared by two of the boxes is counted twice: the sum only grows, and
-        // the exact count decides.
-        let mut n = 0;
-        for y in r.lo[1]..=r.hi[1] {
-            for x in r.lo[0]..=r.hi[0] {
-                n += self.fill[self.bucket_of([x, y], r.sys) as usize];
-            }
-        }
-        Some((region, n))
-    }
-
-    fn exact_count(&self, r: &HashRegion) -> u32 {
-        let mut n = 0;
-        self.for_each_in(&r.boxes, |_| n += 1);
-        n
-    }
-
-    #[inline]
-    fn in_region(&self, v: u32, r: &HashRegion) -> bool {
-        // The box, not the bucket: a walk must not count another box hashed alike.
-        let k = self.half[v as usize];
-        ((k[0] as i64).wrapping_sub(r.lo[0]) as u64) <= r.size[0]
-            && ((k[1] as i64).wrapping_sub(r.lo[1]) as u64) <= r.size[1]
     }
 }
 

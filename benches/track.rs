@@ -1,0 +1,99 @@
+//! Tracking speed (issue 26: ≤ 30 ms CPU per 512² frame for a 60-cell colony): a
+//! deterministic 512×512 movie of 60 bright cells (radius 9–12 px) on a noisy background,
+//! each drifting a pixel or two per frame, tracked frame by frame with the defaults
+//! (`Tracker::step`, the same path as `topocontour track`). Prints the CPU time per frame
+//! after the first (the first frame places automatic seeds over the whole image; later
+//! ones start from the contours before), the tracks found, and the peak resident memory.
+//!
+//! `cargo bench --bench track` (`-- FRAMES` for another length, default 20).
+
+use topocontour::evolution::{Field, Params, Polarity};
+use topocontour::geometry::Point;
+use topocontour::track::{TrackSettings, Tracker};
+
+const SIDE: usize = 512;
+
+/// Frame `t`: 60 cells on a 10 × 6 grid, each on its own slow drift.
+fn frame(t: usize) -> Field {
+    let mut data = vec![0f32; SIDE * SIDE];
+    for (idx, v) in data.iter_mut().enumerate() {
+        let (x, y) = (idx % SIDE, idx / SIDE);
+        let h = (x as u64 * 73_856_093) ^ (y as u64 * 19_349_663) ^ (t as u64 * 83_492_791);
+        *v = 0.2 + ((h % 1000) as f32 / 1000.0 - 0.5) * 0.1;
+    }
+    for k in 0..60usize {
+        let (i, j) = (k % 10, k / 10);
+        let a = k as f64 * 2.399;
+        let c = Point::new(
+            26.0 + 51.0 * i as f64 + 1.2 * t as f64 * a.cos(),
+            43.0 + 85.0 * j as f64 + 1.2 * t as f64 * a.sin(),
+        );
+        let r = 9.0 + 3.0 * (k as f64 * 0.618_034).fract();
+        let (x0, x1) = (
+            (c.x - r - 1.0).max(0.0) as usize,
+            ((c.x + r + 1.0) as usize).min(SIDE - 1),
+        );
+        let (y0, y1) = (
+            (c.y - r - 1.0).max(0.0) as usize,
+            ((c.y + r + 1.0) as usize).min(SIDE - 1),
+        );
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                if Point::new(x as f64 + 0.5, y as f64 + 0.5).dist(c) <= r {
+                    data[y * SIDE + x] += 0.5;
+                }
+            }
+        }
+    }
+    Field::new(SIDE, SIDE, data)
+}
+
+/// CPU seconds of this process so far (user + system).
+fn cpu_seconds() -> f64 {
+    // SAFETY: getrusage only writes the struct it is given.
+    let mut u: libc::rusage = unsafe { std::mem::zeroed() };
+    unsafe { libc::getrusage(libc::RUSAGE_SELF, &mut u) };
+    let tv = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
+    tv(u.ru_utime) + tv(u.ru_stime)
+}
+
+/// Peak resident memory, MiB.
+fn peak_mib() -> f64 {
+    // SAFETY: as above.
+    let mut u: libc::rusage = unsafe { std::mem::zeroed() };
+    unsafe { libc::getrusage(libc::RUSAGE_SELF, &mut u) };
+    u.ru_maxrss as f64 / 1024.0
+}
+
+fn main() {
+    let frames: usize = std::env::args()
+        .skip(1)
+        .find_map(|a| a.parse().ok())
+        .unwrap_or(20);
+    let params = Params {
+        polarity: Polarity::Bright,
+        ..Params::default()
+    };
+    let mut tracker = Tracker::new(TrackSettings::new(params), Vec::new());
+    let (mut first, mut rest, mut cells) = (0.0, 0.0, 0);
+    for t in 0..frames {
+        let image = frame(t);
+        let before = cpu_seconds();
+        let f = tracker.step(&image).expect("tracking a frame");
+        let spent = cpu_seconds() - before;
+        if t == 0 {
+            first = spent;
+        } else {
+            rest += spent;
+        }
+        cells = f.objects.len();
+    }
+    println!(
+        "track 512x512, 60 cells, {frames} frames: frame 0 {:.1} ms CPU, later frames {:.1} ms CPU each; {} cells in the last frame, {} tracks; peak RSS {:.0} MiB",
+        first * 1e3,
+        rest * 1e3 / (frames - 1).max(1) as f64,
+        cells,
+        tracker.lineage().tracks().len(),
+        peak_mib()
+    );
+}

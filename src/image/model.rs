@@ -1,0 +1,352 @@
+//! [`ImageModel`]: everything an engine reads of the image, prepared once per run.
+//!
+//! One chain turns an image into what the forces see: the kind of image
+//! ([`super::modality`]: phase contrast has its halo clipped), the Gaussian pyramid of
+//! seed 004 §2 ([`super::field`]), the two-class intensity model learnt from Otsu's
+//! split and the medians under the user's shapes ([`super::intensity`],
+//! [`super::hints`]), and per pyramid level the local decision level of the region term
+//! ([`super::local`]). The evolver, the automatic seeds and every later model kind start
+//! from [`ImageModel::prepare`], so they cannot disagree on it.
+//!
+//! The explicit engines read the model through [`LevelView`] only: [`LevelView::probe`]
+//! says what the image says at a point (the region score, the edge-stopping factor, the
+//! edge attraction) and [`LevelView::pixel_score`] the region score of one pixel; the
+//! implicit engine reads the full-resolution field and its two-class model
+//! ([`ImageModel::fine`], [`ImageModel::global`]). A new kind of model (a pixel
+//! classifier's probabilities, say: the field P(object) − P(background) with its level
+//! at 0, a boundary probability for the edge stop) is a new [`ModelKind`] whose probes
+//! this module answers; the engines stay as they are.
+
+use super::field::{Field, Level, Pyramid};
+use super::hints::hints;
+use super::intensity::{IntensityModel, Polarity};
+use super::local::{decision_field, Decision, LevelRule};
+use super::modality::{for_modality, Modality};
+use super::scale::object_scale;
+use crate::geometry::Point;
+use crate::shape::Shape;
+
+/// Most levels of the pyramid.
+pub const PYRAMID_LEVELS: usize = 4;
+
+/// What [`ImageModel::prepare`] is told (the image's part of an evolution's `Params`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModelParams {
+    /// Whether objects are darker or brighter than the background.
+    pub polarity: Polarity,
+    /// The kind of image.
+    pub modality: Modality,
+    /// Compare with a local decision level instead of the global one.
+    pub local: bool,
+    /// Radius of the local statistics, full-resolution pixels; `None`: the object scale
+    /// ([`super::scale::object_scale`]).
+    pub local_radius: Option<f64>,
+    /// Coarsest pyramid level's short side, pixels (`usize::MAX`: level 0 only).
+    pub coarsest_side: usize,
+}
+
+impl ModelParams {
+    /// What the automatic seeds read: local levels at the object scale, on level 0 only.
+    pub fn seeds(polarity: Polarity, modality: Modality) -> Self {
+        ModelParams {
+            polarity,
+            modality,
+            local: true,
+            local_radius: None,
+            coarsest_side: usize::MAX,
+        }
+    }
+}
+
+/// Which model decides object against background.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModelKind {
+    /// Two intensity classes: the image (as its kind is seen) against the global model's
+    /// midpoint or the local decision levels.
+    Intensity,
+}
+
+/// What an engine reads of the image (see the module doc).
+#[derive(Clone, Debug)]
+pub struct ImageModel {
+    kind: ModelKind,
+    /// What it was prepared with.
+    params: ModelParams,
+    /// The pyramid of the image the forces see.
+    pyramid: Pyramid,
+    /// The two-class model on pyramid level 0.
+    global: IntensityModel,
+    /// Per pyramid level, the local decision level (empty: the global model decides).
+    decision: Vec<Decision>,
+    /// Radius of the local statistics, full-resolution pixels (`None` without them).
+    radius: Option<f64>,
+    width: usize,
+    height: usize,
+}
+
+impl ImageModel {
+    /// Prepares `image` as `params` say; `shapes` (the user's initialisation, possibly
+    /// none) give the hints of [`super::hints`]: the object and background medians, and
+    /// in phase contrast the background level the halo is clipped to.
+    pub fn prepare(image: &Field, params: &ModelParams, shapes: &[Shape]) -> Self {
+        // Phase contrast: the halo reads as background, clipped to the level of the band a
+        // wrap shows.
+        let band = (params.modality == Modality::PhaseContrast)
+            .then(|| hints(image, shapes).1)
+            .flatten();
+        let seen = for_modality(image, params.polarity, params.modality, band);
+        let pyramid = Pyramid::new(&seen, params.coarsest_side, PYRAMID_LEVELS);
+        let fine = &pyramid.levels[0].image;
+        let (object_hint, background_hint) = hints(fine, shapes);
+        let global = IntensityModel::learn(fine, params.polarity, object_hint, background_hint);
+        let (radius, decision) = if params.local {
+            let radius = params
+                .local_radius
+                .unwrap_or_else(|| object_scale(fine, &global));
+            let levels = decision_levels(&pyramid, &global, radius, params.modality);
+            (Some(radius), levels)
+        } else {
+            (None, Vec::new())
+        };
+        ImageModel {
+            kind: ModelKind::Intensity,
+            params: *params,
+            pyramid,
+            global,
+            decision,
+            radius,
+            width: image.width,
+            height: image.height,
+        }
+    }
+
+    /// The kind of model.
+    pub fn kind(&self) -> ModelKind {
+        self.kind
+    }
+    /// What it was prepared with.
+    pub fn params(&self) -> &ModelParams {
+        &self.params
+    }
+    /// The image's width and height in pixels.
+    pub fn size(&self) -> (usize, usize) {
+        (self.width, self.height)
+    }
+    /// Number of pyramid levels (level 0: full resolution).
+    pub fn levels(&self) -> usize {
+        self.pyramid.levels.len()
+    }
+    /// The coarsest pyramid level.
+    pub fn coarsest(&self) -> usize {
+        self.levels() - 1
+    }
+    /// The image the forces see, at full resolution (pyramid level 0).
+    pub fn fine(&self) -> &Field {
+        &self.pyramid.levels[0].image
+    }
+    /// The two-class model learnt on [`ImageModel::fine`].
+    pub fn global(&self) -> IntensityModel {
+        self.global
+    }
+    /// Radius of the local statistics in full-resolution pixels (`None`: no local levels).
+    pub fn radius(&self) -> Option<f64> {
+        self.radius
+    }
+    /// The local decision level of pyramid level `level` (`None`: the global model
+    /// decides there).
+    pub fn decision(&self, level: usize) -> Option<&Decision> {
+        self.decision.get(level)
+    }
+    /// What the forces read on pyramid level `level`.
+    pub fn level(&self, level: usize) -> LevelView<'_> {
+        LevelView {
+            level: &self.pyramid.levels[level],
+            decision: self.decision.get(level),
+            global: &self.global,
+        }
+    }
+}
+
+/// Per pyramid level, the local decision level of the region term at `radius`
+/// full-resolution pixels.
+fn decision_levels(
+    pyramid: &Pyramid,
+    model: &IntensityModel,
+    radius: f64,
+    modality: Modality,
+) -> Vec<Decision> {
+    let rule = LevelRule::new(&pyramid.levels[0].image, model, modality);
+    pyramid
+        .levels
+        .iter()
+        .enumerate()
+        .map(|(l, lv)| {
+            let r = (radius / Pyramid::scale(l)).round().max(1.0) as usize;
+            decision_field(&lv.image, r, model, &rule)
+        })
+        .collect()
+}
+
+/// One pyramid level of an [`ImageModel`], as the forces read it.
+#[derive(Clone, Copy, Debug)]
+pub struct LevelView<'a> {
+    level: &'a Level,
+    decision: Option<&'a Decision>,
+    global: &'a IntensityModel,
+}
+
+/// What the image says at one point of a level ([`LevelView::probe`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Probe {
+    /// The region score, in units of half the contrast: +1 at the object's level, 0 at
+    /// the decision level, −1 at the background's (not clamped).
+    pub score: f64,
+    /// Edge stopping, in (0, 1]: 1 on flat image, towards 0 on a strong edge.
+    pub stop: f64,
+    /// Edge attraction along the normal, in [−1, 1]: positive when the gradient
+    /// magnitude grows ahead.
+    pub edge: f64,
+}
+
+impl LevelView<'_> {
+    /// The level's image.
+    pub fn image(&self) -> &Field {
+        &self.level.image
+    }
+
+    /// What the image says at `x` (level coordinates) for a contour with outward unit
+    /// normal `n`. The edge stop is 1 / (1 + 16 (|∇I| / c)²) with c the (local)
+    /// contrast; the edge attraction compares the gradient magnitude half a pixel ahead
+    /// and behind (halos and texture make wider differences chatter).
+    #[inline]
+    pub fn probe(&self, x: Point, n: Point) -> Probe {
+        let t = self.level.sample(x);
+        // The score in units of half the contrast, and the contrast: local or global.
+        let (score, contrast) = match self.decision {
+            Some(d) => {
+                let half = d.half.sample(x).max(1e-6);
+                ((t.value - d.level.sample(x)) * d.sign / half, 2.0 * half)
+            }
+            None => (
+                self.global.score(t.value),
+                (self.global.object - self.global.background)
+                    .abs()
+                    .max(1e-6),
+            ),
+        };
+        let gmag = t.gradient.norm() / contrast;
+        let stop = 1.0 / (1.0 + 16.0 * gmag * gmag);
+        let ahead = self.level.gmag(x + n * 0.5);
+        let behind = self.level.gmag(x - n * 0.5);
+        let edge = (2.0 * (ahead - behind) / contrast).clamp(-1.0, 1.0);
+        Probe { score, stop, edge }
+    }
+
+    /// The region score of pixel `i` of the level (as [`Probe::score`]).
+    #[inline]
+    pub fn pixel_score(&self, i: usize) -> f64 {
+        let v = self.level.image.data[i] as f64;
+        match self.decision {
+            Some(d) => (v - d.level.data[i] as f64) * d.sign / (d.half.data[i] as f64).max(1e-6),
+            None => self.global.score(v),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Bright disks of two brightnesses on a noisy dark ground.
+    fn disks(w: usize, h: usize) -> Field {
+        let data = (0..w * h)
+            .map(|i| {
+                let (x, y) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
+                let noise = ((i * 2_654_435_761) % 97) as f32 / 97.0 - 0.5;
+                let near = |cx: f64, cy: f64| (x - cx).hypot(y - cy) < 12.0;
+                let v = if near(30.0, 30.0) {
+                    0.8
+                } else if near(80.0, 50.0) {
+                    0.45
+                } else {
+                    0.1
+                };
+                v + 0.04 * noise
+            })
+            .collect();
+        Field::new(w, h, data)
+    }
+
+    fn run_params(polarity: Polarity, modality: Modality) -> ModelParams {
+        ModelParams {
+            coarsest_side: 16,
+            ..ModelParams::seeds(polarity, modality)
+        }
+    }
+
+    /// The seeds and a run without shapes read the same full-resolution level: the
+    /// automatic seeds see the mask the evolution will see.
+    #[test]
+    fn seeds_and_a_run_share_level_0() {
+        let img = disks(120, 90);
+        for modality in [
+            Modality::Generic,
+            Modality::Fluorescence,
+            Modality::PhaseContrast,
+        ] {
+            let seeds =
+                ImageModel::prepare(&img, &ModelParams::seeds(Polarity::Bright, modality), &[]);
+            let run = ImageModel::prepare(&img, &run_params(Polarity::Bright, modality), &[]);
+            assert_eq!(seeds.levels(), 1);
+            assert!(run.levels() > 1);
+            assert_eq!(seeds.fine().data, run.fine().data);
+            assert_eq!(seeds.global(), run.global());
+            assert_eq!(seeds.radius(), run.radius());
+            let (a, b) = (seeds.decision(0).unwrap(), run.decision(0).unwrap());
+            assert_eq!(a.level.data, b.level.data);
+            assert_eq!(a.half.data, b.half.data);
+        }
+    }
+
+    /// A probe at a pixel centre scores the pixel as [`LevelView::pixel_score`] does,
+    /// with local levels and with the global model alone.
+    #[test]
+    fn a_probe_at_a_pixel_centre_scores_the_pixel() {
+        let img = disks(120, 90);
+        for local in [true, false] {
+            let params = ModelParams {
+                local,
+                ..run_params(Polarity::Bright, Modality::Generic)
+            };
+            let model = ImageModel::prepare(&img, &params, &[]);
+            assert_eq!(model.decision(0).is_some(), local);
+            for l in 0..model.levels() {
+                let view = model.level(l);
+                let w = view.image().width;
+                for i in (0..view.image().data.len()).step_by(7) {
+                    let x = Point::new((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
+                    let p = view.probe(x, Point::new(1.0, 0.0));
+                    assert_eq!(p.score, view.pixel_score(i), "level {l} pixel {i}");
+                    assert!(p.stop > 0.0 && p.stop <= 1.0);
+                    assert!((-1.0..=1.0).contains(&p.edge));
+                }
+            }
+        }
+    }
+
+    /// The user's shapes change the model (their medians are the hints); no shape, no
+    /// hint.
+    #[test]
+    fn shapes_give_the_hints() {
+        let img = disks(120, 90);
+        let params = run_params(Polarity::Bright, Modality::Generic);
+        let plain = ImageModel::prepare(&img, &params, &[]);
+        let dim_seed = [Shape::Disk {
+            center: Point::new(80.0, 50.0),
+            radius: 6.0,
+        }];
+        let hinted = ImageModel::prepare(&img, &params, &dim_seed);
+        assert!(hinted.global().object < plain.global().object);
+        assert!((hinted.global().object - 0.45).abs() < 0.05);
+    }
+}
