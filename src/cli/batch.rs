@@ -43,6 +43,40 @@ pub struct BatchArgs {
 /// What one image gave: its summary rows, or why it failed.
 type ImageResult = Result<Vec<String>, Failure>;
 
+/// The progress bar of a batch of `n` images.
+fn progress_bar(n: usize) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(n as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{bar:40} {pos}/{len} images, {elapsed} ({eta} left)",
+        )
+        .expect("a valid template"),
+    );
+    bar
+}
+
+/// The summary's text from the images' results, with the images done and failed and the
+/// objects found; each failure is noted on stderr.
+fn collate(results: &[(PathBuf, Option<ImageResult>)]) -> (String, usize, usize, usize) {
+    let mut rows = String::from(SUMMARY_HEADER);
+    let (mut done, mut failed, mut objects) = (0, 0, 0);
+    for (img, r) in results {
+        match r {
+            Some(Ok(lines)) => {
+                done += 1;
+                objects += lines.len();
+                lines.iter().for_each(|l| rows.push_str(l));
+            }
+            Some(Err(f)) => {
+                failed += 1;
+                note(&format!("{}: {}", img.display(), f.message));
+            }
+            None => {}
+        }
+    }
+    (rows, done, failed, objects)
+}
+
 /// Runs `batch`.
 pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
     let images = list_images(&a.input)
@@ -75,13 +109,7 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
         // once per process); without one, Ctrl-C ends the run as any signal does.
         let _ = ctrlc::set_handler(move || stop.store(true, Ordering::SeqCst));
     }
-    let bar = indicatif::ProgressBar::new(images.len() as u64);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template(
-            "{bar:40} {pos}/{len} images, {elapsed} ({eta} left)",
-        )
-        .expect("a valid template"),
-    );
+    let bar = progress_bar(images.len());
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(a.jobs.map_or(0, |n| n.min(cores())))
         .build()
@@ -104,22 +132,7 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
             .collect()
     });
     bar.finish_and_clear();
-    let mut rows = String::from(SUMMARY_HEADER);
-    let (mut done, mut failed, mut objects) = (0, 0, 0);
-    for (img, r) in &results {
-        match r {
-            Some(Ok(lines)) => {
-                done += 1;
-                objects += lines.len();
-                lines.iter().for_each(|l| rows.push_str(l));
-            }
-            Some(Err(f)) => {
-                failed += 1;
-                note(&format!("{}: {}", img.display(), f.message));
-            }
-            None => {}
-        }
-    }
+    let (rows, done, failed, objects) = collate(&results);
     summary
         .commit(vec![rows.into_bytes()])
         .map_err(|e| bad(e.to_string()))?;
