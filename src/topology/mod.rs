@@ -93,16 +93,27 @@ impl ContourSet {
     /// events the move caused; on error nothing changed. `v` may be gone afterwards (its
     /// ring vanished, or it lay on a deleted stretch): check [`ContourSet::is_alive`].
     pub fn move_vertex(&mut self, v: VertexId, to: Point) -> Result<Vec<TopologyEvent>, MoveError> {
+        if self.settled_without_correction(v, to)? {
+            return Ok(Vec::new());
+        }
+        self.replace_vertex(v, Some(to))
+    }
+
+    /// Checks a move of `v` to `to` and makes it at once when it needs no correction (no
+    /// motion at all, or a quiet move that meets only its own chain): `true` then, `false`
+    /// when the motion region must be corrected.
+    pub(crate) fn settled_without_correction(
+        &mut self,
+        v: VertexId,
+        to: Point,
+    ) -> Result<bool, MoveError> {
         if !self.is_alive(v) {
             return Err(MoveError::NoVertex(v));
         }
         if !to.is_finite() {
             return Err(MoveError::NotFinite);
         }
-        if to == self.pos[v as usize] || self.quiet_move(v, to) {
-            return Ok(Vec::new());
-        }
-        self.replace_vertex(v, Some(to))
+        Ok(to == self.pos[v as usize] || self.quiet_move(v, to))
     }
 
     /// Removes vertex `v`, joining its neighbours by a straight edge: the motion of `v`

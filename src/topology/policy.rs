@@ -73,13 +73,7 @@ impl ContourSet {
         if policy == TopologyPolicy::ADAPTIVE {
             return self.move_vertex(v, to);
         }
-        if !self.is_alive(v) {
-            return Err(MoveError::NoVertex(v));
-        }
-        if !to.is_finite() {
-            return Err(MoveError::NotFinite);
-        }
-        if to == self.pos[v as usize] || self.quiet_move(v, to) {
+        if self.settled_without_correction(v, to)? {
             return Ok(Vec::new());
         }
         self.replace_under(v, Some(to), policy)
