@@ -2,7 +2,9 @@
 
 use clap::Parser;
 use std::io::Write;
-use topocontour::cli::{batch, bench, note, replay, segment, track, Cli, Command, Failure};
+use topocontour::cli::{
+    batch, bench, note, replay, segment, track, usage_line, Cli, Command, Failure,
+};
 
 #[cfg(feature = "gui")]
 fn open_app(image: Option<std::path::PathBuf>) -> Result<(), Failure> {
@@ -55,19 +57,6 @@ fn keep_freed_memory() {
 
 #[cfg(not(all(target_os = "linux", target_env = "gnu")))]
 fn keep_freed_memory() {}
-
-/// A usage error as one line: clap's message spans 3–7 lines (the error with its
-/// details, then usage and tips after a blank line); scripts read one.
-fn usage_line(e: &clap::Error) -> String {
-    let rendered = e.to_string();
-    let head: Vec<&str> = rendered
-        .lines()
-        .take_while(|l| !l.trim().is_empty())
-        .map(str::trim)
-        .collect();
-    let text = head.join(" ");
-    format!("{} (see --help)", text.trim_start_matches("error: "))
-}
 
 fn main() {
     keep_freed_memory();

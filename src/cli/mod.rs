@@ -12,7 +12,7 @@ mod track;
 pub use crate::io::Format;
 pub use batch::{batch, BatchArgs};
 pub use bench::{bench, BenchArgs};
-pub use run::{init_shapes, job_for, params_for, RunSettings};
+pub use run::{init_shapes, job_for, params_for, run_loaded, RunSettings};
 pub use segment::{replay, segment, OutputArgs, ReplayArgs, SegmentArgs};
 pub use track::{track, TrackArgs};
 
@@ -50,6 +50,19 @@ pub enum Command {
     /// Track cells through a movie (divisions as split events); write the Cell Tracking
     /// Challenge result.
     Track(Box<TrackArgs>),
+}
+
+/// A usage error as one line: clap's message spans 3–7 lines (the error with its
+/// details, then usage and tips after a blank line); scripts read one.
+pub fn usage_line(e: &clap::Error) -> String {
+    let rendered = e.to_string();
+    let head: Vec<&str> = rendered
+        .lines()
+        .take_while(|l| !l.trim().is_empty())
+        .map(str::trim)
+        .collect();
+    let text = head.join(" ");
+    format!("{} (see --help)", text.trim_start_matches("error: "))
 }
 
 /// A failure to report: exit code 2 for bad input, 1 for internal errors.

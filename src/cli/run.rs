@@ -3,9 +3,9 @@
 
 use super::{bad, Failure};
 use crate::contours::BroadPhaseKind;
-use crate::evolution::{Modality, Mode, Params, Polarity, Shape};
+use crate::evolution::{Field, Modality, Mode, Params, Polarity, Shape};
 use crate::geometry::Point;
-use crate::io::PixelSize;
+use crate::io::{ImageInfo, PixelSize};
 use crate::job::{Job, JobRun};
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
@@ -289,6 +289,19 @@ pub(super) fn evolve(path: &Path, a: &RunSettings) -> Result<(Job, JobRun), Fail
             info.pages
         ));
     }
+    let run = run_loaded(&mut job, a, image, info)?;
+    Ok((job, run))
+}
+
+/// Runs `job` (from [`job_for`]) on its image, already loaded, with the settings' shapes
+/// checked against the image's size: what `segment` does after loading, which the
+/// Python bindings share with an image handed over in memory.
+pub fn run_loaded(
+    job: &mut Job,
+    a: &RunSettings,
+    image: Field,
+    info: ImageInfo,
+) -> Result<JobRun, Failure> {
     if let Some(p) = &job.pixel_size {
         let area = p.size * p.size * (image.width * image.height) as f64;
         if !(area.is_finite() && p.size * p.size > 0.0) {
@@ -299,8 +312,7 @@ pub(super) fn evolve(path: &Path, a: &RunSettings) -> Result<(Job, JobRun), Fail
         }
     }
     job.shapes = init_shapes(a, image.width, image.height)?;
-    let run = job.run_on(image, info).map_err(|e| bad(e.to_string()))?;
-    Ok((job, run))
+    job.run_on(image, info).map_err(|e| bad(e.to_string()))
 }
 
 #[cfg(test)]

@@ -60,7 +60,7 @@ fn count_pages(dec: &mut Decoder<Cursor<&[u8]>>) -> usize {
 
 /// Floating-point samples scaled from their finite range to [0, 1] (left as they are when
 /// already inside it); NaN becomes the finite samples' mean, ±∞ the high or low end.
-fn float_samples(v: impl Iterator<Item = f64> + Clone) -> Vec<f32> {
+pub(crate) fn float_samples(v: impl Iterator<Item = f64> + Clone) -> Vec<f32> {
     let (lo, hi, sum, n) = v.clone().filter(|x| x.is_finite()).fold(
         (f64::INFINITY, f64::NEG_INFINITY, 0.0, 0usize),
         |(lo, hi, sum, n), x| (lo.min(x), hi.max(x), sum + x, n + 1),
