@@ -3,7 +3,7 @@
 use clap::Parser;
 use std::io::Write;
 use topocontour::cli::{
-    batch, bench, note, replay, segment, track, usage_line, Cli, Command, Failure,
+    batch, bench, note, replay, segment, track, train, usage_line, Cli, Command, Failure,
 };
 
 #[cfg(feature = "gui")]
@@ -79,6 +79,7 @@ fn main() {
         Some(Command::Batch(b)) => batch(b),
         Some(Command::Bench(b)) => bench(b),
         Some(Command::Track(t)) => track(t),
+        Some(Command::Train(t)) => train(t),
         None => open_app(cli.image.clone()),
     };
     if let Err(f) = result {
