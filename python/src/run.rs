@@ -9,7 +9,9 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::{Path, PathBuf};
-use topocontour::cli::{job_for, run_loaded, usage_line, Failure, RunSettings};
+use topocontour::cli::{
+    classifier_for, job_for, run_loaded, teach_for, usage_line, Failure, RunSettings,
+};
 use topocontour::contours::ContourId;
 use topocontour::evolution::Evolver;
 use topocontour::io::folder::file_name;
@@ -63,7 +65,9 @@ pub fn segment_array(
     py.detach(move || {
         let field = field_from_samples(&name, width, height, owned.samples()).map_err(bad)?;
         drop(owned);
+        let teach = classifier_for(&run).map_err(raise)?;
         let mut job = job_for(Path::new(&name), &run).map_err(raise)?;
+        job.teach = teach_for(&run, teach.as_ref(), &field).map_err(raise)?;
         let info = ImageInfo {
             pages: 1,
             pixel_size: None,
@@ -79,8 +83,10 @@ pub fn segment_array(
 pub fn segment_path(py: Python<'_>, path: PathBuf, argv: Vec<String>) -> PyResult<Segmentation> {
     let run = settings(argv)?;
     py.detach(move || {
+        let teach = classifier_for(&run).map_err(raise)?;
         let mut job = job_for(&path, &run).map_err(raise)?;
         let (image, info) = job.load().map_err(bad)?;
+        job.teach = teach_for(&run, teach.as_ref(), &image).map_err(raise)?;
         let done = run_loaded(&mut job, &run, image, info).map_err(raise)?;
         Ok(Segmentation::of(done, file_name(&path)))
     })

@@ -13,7 +13,9 @@ mod train;
 pub use crate::io::Format;
 pub use batch::{batch, BatchArgs};
 pub use bench::{bench, BenchArgs};
-pub use run::{init_shapes, job_for, params_for, run_loaded, RunSettings};
+pub use run::{
+    classifier_for, init_shapes, job_for, params_for, run_loaded, teach_for, RunSettings,
+};
 pub use segment::{replay, segment, OutputArgs, ReplayArgs, SegmentArgs};
 pub use track::{track, TrackArgs};
 pub use train::{train, TrainArgs};

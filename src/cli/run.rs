@@ -283,7 +283,7 @@ pub fn job_for(path: &Path, a: &RunSettings) -> Result<Job, Failure> {
 }
 
 /// The classifier `--classifier` names, read and checked once (a batch shares it).
-pub(super) fn classifier_for(a: &RunSettings) -> Result<Option<Teach>, Failure> {
+pub fn classifier_for(a: &RunSettings) -> Result<Option<Teach>, Failure> {
     a.classifier
         .as_deref()
         .map(|p| {
@@ -305,12 +305,7 @@ pub(super) fn evolve(
 ) -> Result<(Job, JobRun), Failure> {
     let mut job = job_for(path, a)?;
     let (image, info) = job.load().map_err(|e| bad(e.to_string()))?;
-    job.teach = match &a.train {
-        Some(p) => Some(Teach::strokes(
-            Strokes::read(p, image.width, image.height).map_err(|e| bad(e.to_string()))?,
-        )),
-        None => teach.cloned(),
-    };
+    job.teach = teach_for(a, teach, &image)?;
     if a.page.is_none() && info.pages > 1 {
         super::note(&format!(
             "note: {} holds {} pages; segmenting page 1 (choose another with --page)",
@@ -320,6 +315,21 @@ pub(super) fn evolve(
     }
     let run = run_loaded(&mut job, a, image, info)?;
     Ok((job, run))
+}
+
+/// What teaches the run on `image`: the `--train` strokes read against it, else
+/// `teach` (the `--classifier`, [`classifier_for`], or one held in memory).
+pub fn teach_for(
+    a: &RunSettings,
+    teach: Option<&Teach>,
+    image: &Field,
+) -> Result<Option<Teach>, Failure> {
+    Ok(match &a.train {
+        Some(p) => Some(Teach::strokes(
+            Strokes::read(p, image.width, image.height).map_err(|e| bad(e.to_string()))?,
+        )),
+        None => teach.cloned(),
+    })
 }
 
 /// Runs `job` (from [`job_for`]) on its image, already loaded, with the settings' shapes
