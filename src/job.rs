@@ -18,7 +18,7 @@
 use crate::evolution::{find_seeds, Edit, EvolveError, Evolver, Field, Params, Polarity, Shape};
 use crate::io::{load_image_page, ImageInfo, LoadError, PixelSize};
 use crate::learn::guide::{self, Guide};
-use crate::learn::{StrokeError, Strokes};
+use crate::learn::{Taught, Teach, TeachError};
 use std::path::PathBuf;
 
 /// Where a run stops.
@@ -50,10 +50,9 @@ pub struct Job {
     pub stop: Stop,
     /// The physical size of a pixel; `None`: what the file records, if anything.
     pub pixel_size: Option<PixelSize>,
-    /// Strokes painted on the image (0 none, 1 background, 2 object, 3 boundary): a
-    /// pixel classifier learns them and the run reads its probabilities
-    /// ([`crate::learn::guide`]).
-    pub strokes: Option<PathBuf>,
+    /// Strokes painted on the image, or a trained pixel classifier: the run reads the
+    /// classifier's probabilities instead of the intensity ([`crate::learn::guide`]).
+    pub teach: Option<Teach>,
 }
 
 /// What a job produced.
@@ -70,6 +69,8 @@ pub struct JobRun {
     pub page: usize,
     /// Pages in the file.
     pub pages: usize,
+    /// With a [`Job::teach`]: the classifier and its probabilities on the image.
+    pub taught: Option<Taught>,
 }
 
 /// Why a job cannot run.
@@ -89,9 +90,9 @@ pub enum JobError {
     /// The evolution refused the shapes, parameters or an edit.
     #[error(transparent)]
     Evolve(#[from] EvolveError),
-    /// The strokes cannot be used.
+    /// The strokes or the classifier cannot be used.
     #[error(transparent)]
-    Strokes(#[from] StrokeError),
+    Teach(#[from] TeachError),
 }
 
 fn polarity_word(p: Polarity) -> &'static str {
@@ -146,7 +147,7 @@ impl Job {
             edits: Vec::new(),
             stop: Stop::Finished,
             pixel_size: None,
-            strokes: None,
+            teach: None,
         }
     }
 
@@ -166,14 +167,25 @@ impl Job {
     /// The evolver at frame 0 on `image` (the job's page, loaded), and the shapes it
     /// starts from: the job's, then the seeds found in this image when asked for.
     pub fn start(&self, image: &Field) -> Result<(Evolver, Vec<Shape>), JobError> {
+        self.start_taught(image).map(|(ev, shapes, _)| (ev, shapes))
+    }
+
+    /// [`Job::start`], and what teaching gave when the job is taught: with strokes the
+    /// classifier trained here (seeded: the same strokes give the same forest), else
+    /// the one given; the run reads its probabilities, and automatic seeds are the
+    /// connected interiors of its object class ([`guide::seeds`]).
+    pub fn start_taught(
+        &self,
+        image: &Field,
+    ) -> Result<(Evolver, Vec<Shape>, Option<Taught>), JobError> {
         let mut shapes = self.shapes.clone();
-        let guide = match &self.strokes {
-            Some(path) => {
-                let strokes = Strokes::read(path, image.width, image.height)?;
-                Some(Guide::train(image, &strokes, &self.params))
-            }
+        let taught = match &self.teach {
+            Some(t) => Some(t.apply(image, &crate::io::folder::file_name(&self.image))?),
             None => None,
         };
+        let guide = taught
+            .as_ref()
+            .map(|t| Guide::new(t.probabilities.clone(), &self.params));
         if self.auto_seeds {
             let found = match &guide {
                 Some(g) => guide::seeds(&g.probabilities),
@@ -191,7 +203,7 @@ impl Job {
             Some(g) => Evolver::new(&g.field, &shapes, g.params.clone())?,
             None => Evolver::new(image, &shapes, self.params.clone())?,
         };
-        Ok((ev, shapes))
+        Ok((ev, shapes, taught))
     }
 
     /// Steps `s` through the job: each edit at its frame (or at the run's end if it ended
@@ -216,7 +228,7 @@ impl Job {
 
     /// Runs the job on its image, already loaded (`image`, `info`: [`Job::load`]).
     pub fn run_on(&self, image: Field, info: ImageInfo) -> Result<JobRun, JobError> {
-        let (mut ev, shapes) = self.start(&image)?;
+        let (mut ev, shapes, taught) = self.start_taught(&image)?;
         self.drive(&mut ev)?;
         ev.filter_clutter();
         Ok(JobRun {
@@ -226,6 +238,7 @@ impl Job {
             pixel: self.pixel_size.clone().or(info.pixel_size),
             page: self.page,
             pages: info.pages,
+            taught,
         })
     }
 

@@ -2,7 +2,7 @@
 
 use clap::Parser;
 use std::io::Write;
-use topocontour::cli::{batch, bench, note, replay, segment, track, Cli, Command, Failure};
+use topocontour::cli::{batch, bench, note, replay, segment, track, train, Cli, Command, Failure};
 
 #[cfg(feature = "gui")]
 fn open_app(image: Option<std::path::PathBuf>) -> Result<(), Failure> {
@@ -93,6 +93,7 @@ fn main() {
         Some(Command::Batch(b)) => batch(b),
         Some(Command::Bench(b)) => bench(b),
         Some(Command::Track(t)) => track(t),
+        Some(Command::Train(t)) => train(t),
         None => open_app(cli.image.clone()),
     };
     if let Err(f) = result {

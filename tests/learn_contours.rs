@@ -11,6 +11,7 @@ use topocontour::check::{strokes_for, touching_rods};
 use topocontour::contours::measure::regions;
 use topocontour::evolution::{Mode, Params, Polarity};
 use topocontour::job::Job;
+use topocontour::learn::{Strokes, Teach};
 
 const W: usize = 160;
 const H: usize = 120;
@@ -44,7 +45,7 @@ fn rods_found(boundary: bool, name: &str) -> (usize, usize) {
     };
     let job = Job {
         auto_seeds: true,
-        strokes: Some(strokes),
+        teach: Some(Teach::strokes(Strokes::read(&strokes, W, H).unwrap())),
         ..Job::new(&image, Vec::new(), params)
     };
     let run = job.run().unwrap();

@@ -11,11 +11,12 @@
 //! name order. The output folder may be the input folder only when no output is an
 //! image (mask, labels, overlay), which the next run would segment.
 
-use super::run::{evolve, RunSettings};
+use super::run::{classifier_for, evolve, RunSettings};
 use super::segment::{counted, write_outputs};
 use super::{bad, note, Failure, Format};
 use crate::io::folder::{file_name, list_images, output_stems, summary_rows, SUMMARY_HEADER};
 use crate::io::{OutputFiles, Outputs};
+use crate::learn::Teach;
 use clap::Args;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
@@ -87,6 +88,13 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
         )));
     }
     let stems = output_stems(&images).map_err(bad)?;
+    if a.run.train.is_some() {
+        return Err(bad(
+            "--train strokes belong to one image; train a classifier (topocontour train, or segment --save-classifier) and give batch --classifier",
+        ));
+    }
+    // One model for the whole folder, read and checked once (ilastik's batch mode).
+    let teach = classifier_for(&a.run)?;
     if let Some(f) = a
         .formats
         .iter()
@@ -121,7 +129,7 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
                 if super::signals::stop_asked() {
                     return (img.clone(), None);
                 }
-                let r = one_image(img, stem, a);
+                let r = one_image(img, stem, a, teach.as_ref());
                 bar.inc(1);
                 (img.clone(), Some(r))
             })
@@ -188,7 +196,7 @@ fn refuse_out_in_input(a: &BatchArgs) -> Result<(), Failure> {
 
 /// Segments one image and writes its outputs, named after `stem`; returns its summary
 /// rows.
-fn one_image(img: &Path, stem: &str, a: &BatchArgs) -> ImageResult {
+fn one_image(img: &Path, stem: &str, a: &BatchArgs, teach: Option<&Teach>) -> ImageResult {
     let paths: Vec<PathBuf> = a
         .formats
         .iter()
@@ -196,11 +204,11 @@ fn one_image(img: &Path, stem: &str, a: &BatchArgs) -> ImageResult {
         .collect();
     let refs: Vec<&Path> = paths.iter().map(PathBuf::as_path).collect();
     let files = OutputFiles::prepare(Some(img), &refs).map_err(|e| bad(e.to_string()))?;
-    let (_, run) = evolve(img, &a.run)?;
+    let (_, run) = evolve(img, &a.run, teach)?;
     let (ev, image) = (&run.ev, &run.image);
     let name = file_name(img);
     let out = Outputs::of(ev, ev.contours(), &name).with_pixel_size(run.pixel.clone());
     let wanted: Vec<(Format, &Path)> = a.formats.iter().copied().zip(refs).collect();
-    write_outputs(files, &wanted, &out, image, None)?;
+    write_outputs(files, &wanted, &out, image, Vec::new())?;
     Ok(summary_rows(&name, &out, image))
 }

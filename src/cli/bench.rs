@@ -63,7 +63,7 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
         let (mut frames, mut contours) = (0, 0);
         for _ in 0..b.runs.max(1) {
             let t = std::time::Instant::now();
-            let ev = evolve(&args.image, &args.run)?.1.ev;
+            let ev = evolve(&args.image, &args.run, None)?.1.ev;
             let out = Outputs::of(&ev, ev.contours(), "");
             std::hint::black_box((out.json(), out.mask_png()));
             times.push(t.elapsed().as_secs_f64() * 1e3);

@@ -9,6 +9,7 @@ mod run;
 mod segment;
 pub mod signals;
 mod track;
+mod train;
 
 pub use crate::io::Format;
 pub use batch::{batch, BatchArgs};
@@ -16,6 +17,7 @@ pub use bench::{bench, BenchArgs};
 pub use run::{init_shapes, job_for, params_for, RunSettings};
 pub use segment::{replay, segment, OutputArgs, ReplayArgs, SegmentArgs};
 pub use track::{track, TrackArgs};
+pub use train::{train, TrainArgs};
 
 use clap::{Parser, Subcommand};
 use std::io::Write;
@@ -48,6 +50,9 @@ pub enum Command {
     Batch(Box<BatchArgs>),
     /// Time the whole pipeline (load, evolve, export) on case folders.
     Bench(BenchArgs),
+    /// Train a pixel classifier on strokes painted on one or more images, for
+    /// `segment --classifier` and `batch --classifier`.
+    Train(Box<TrainArgs>),
     /// Track cells through a movie (divisions as split events); write the Cell Tracking
     /// Challenge result.
     Track(Box<TrackArgs>),

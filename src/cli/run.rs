@@ -7,6 +7,7 @@ use crate::evolution::{Modality, Mode, Params, Polarity, Shape};
 use crate::geometry::Point;
 use crate::io::PixelSize;
 use crate::job::{Job, JobRun};
+use crate::learn::{Strokes, Teach};
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
@@ -27,8 +28,12 @@ pub struct RunSettings {
     /// Strokes painted on the image, a PNG of its size (0 none, 1 background, 2 object,
     /// 3 boundary between touching objects): a pixel classifier learns them and the
     /// contours follow its probabilities (--auto-seeds then seeds its objects).
-    #[arg(long, value_name = "STROKES.png")]
+    #[arg(long, value_name = "STROKES.png", conflicts_with = "classifier")]
     pub train: Option<PathBuf>,
+    /// A trained pixel classifier (from `train` or `segment --save-classifier`): the
+    /// contours follow its probabilities, as with --train.
+    #[arg(long, value_name = "FILE")]
+    pub classifier: Option<PathBuf>,
     /// A rectangle X0,Y0,X1,Y1.
     #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_rect)]
     pub rect: Vec<(f64, f64, f64, f64)>,
@@ -78,6 +83,7 @@ impl RunSettings {
             wrap: None,
             auto_seeds: false,
             train: None,
+            classifier: None,
             rect: Vec::new(),
             object,
             mode: Mode::Adaptive,
@@ -272,16 +278,39 @@ pub fn job_for(path: &Path, a: &RunSettings) -> Result<Job, Failure> {
         page,
         auto_seeds: a.auto_seeds,
         pixel_size,
-        strokes: a.train.clone(),
         ..Job::new(path, Vec::new(), params_for(a)?)
     })
 }
 
+/// The classifier `--classifier` names, read and checked once (a batch shares it).
+pub(super) fn classifier_for(a: &RunSettings) -> Result<Option<Teach>, Failure> {
+    a.classifier
+        .as_deref()
+        .map(|p| {
+            crate::io::classifier::read(p)
+                .map(Teach::classifier)
+                .map_err(|e| bad(e.to_string()))
+        })
+        .transpose()
+}
+
 /// Loads `path` (page `--page` of a stack) and runs the job the settings describe on it:
-/// what `segment` and each image of `batch` do. Returns the job too (a session records it).
-pub(super) fn evolve(path: &Path, a: &RunSettings) -> Result<(Job, JobRun), Failure> {
+/// what `segment` and each image of `batch` do; `teach` is the `--classifier`
+/// ([`classifier_for`]), `--train` is read here against the image. Returns the job too
+/// (a session records it).
+pub(super) fn evolve(
+    path: &Path,
+    a: &RunSettings,
+    teach: Option<&Teach>,
+) -> Result<(Job, JobRun), Failure> {
     let mut job = job_for(path, a)?;
     let (image, info) = job.load().map_err(|e| bad(e.to_string()))?;
+    job.teach = match &a.train {
+        Some(p) => Some(Teach::strokes(
+            Strokes::read(p, image.width, image.height).map_err(|e| bad(e.to_string()))?,
+        )),
+        None => teach.cloned(),
+    };
     if a.page.is_none() && info.pages > 1 {
         super::note(&format!(
             "note: {} holds {} pages; segmenting page 1 (choose another with --page)",

@@ -27,6 +27,10 @@ pub struct SegmentArgs {
     /// Write a session file that `topocontour replay` and the app reproduce this run from.
     #[arg(long, value_name = "OUT")]
     pub save_session: Option<PathBuf>,
+    /// Write the pixel classifier the run was taught with (--train or --classifier), for
+    /// `--classifier` on other images and `batch --classifier`.
+    #[arg(long, value_name = "OUT")]
+    pub save_classifier: Option<PathBuf>,
 }
 
 /// The output files a run can write, each optional.
@@ -78,14 +82,14 @@ impl OutputArgs {
     }
 }
 
-/// Renders every output of a finished run and writes them all or none (`extra`: one
-/// more file's bytes, prepared after the outputs, such as a session).
+/// Renders every output of a finished run and writes them all or none (`extra`: more
+/// files' bytes, prepared after the outputs, such as a session).
 pub(super) fn write_outputs(
     files: OutputFiles,
     wanted: &[(Format, &Path)],
     out: &Outputs,
     image: &crate::evolution::Field,
-    extra: Option<Vec<u8>>,
+    extra: Vec<Vec<u8>>,
 ) -> Result<(), Failure> {
     let mut bytes = wanted
         .iter()
@@ -100,18 +104,25 @@ pub(super) fn write_outputs(
 
 /// Runs `segment` and writes its outputs; returns the finished evolver.
 pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
-    if a.save_session.is_some() && a.run.train.is_some() {
-        // A session replays from the image alone; it does not hold strokes yet.
+    if a.save_classifier.is_some() && a.run.train.is_none() && a.run.classifier.is_none() {
         return Err(bad(
-            "--save-session does not record --train strokes yet; run without one of them",
+            "--save-classifier saves what --train STROKES.png (or --classifier) taught; give one",
         ));
     }
     // Every output is checked, and its temporary created, before any work.
     let wanted = a.out.list();
+    let extras: Vec<&Path> = [&a.save_session, &a.save_classifier]
+        .into_iter()
+        .filter_map(|p| p.as_deref())
+        .collect();
     let mut paths: Vec<&Path> = wanted.iter().map(|&(_, p)| p).collect();
-    paths.extend(a.save_session.as_deref());
-    let files = OutputFiles::prepare(Some(&a.image), &paths).map_err(|e| bad(e.to_string()))?;
-    let (job, run) = evolve(&a.image, &a.run)?;
+    paths.extend(&extras);
+    let mut inputs = vec![(a.image.as_path(), "input image")];
+    inputs.extend(a.run.train.as_deref().map(|p| (p, "strokes file")));
+    inputs.extend(a.run.classifier.as_deref().map(|p| (p, "classifier file")));
+    let files = OutputFiles::prepare_for(&inputs, &paths).map_err(|e| bad(e.to_string()))?;
+    let teach = super::run::classifier_for(&a.run)?;
+    let (job, run) = evolve(&a.image, &a.run, teach.as_ref())?;
     let ev = &run.ev;
     let name = file_name(&a.image);
     let out = Outputs::of(ev, ev.contours(), &name).with_pixel_size(run.pixel.clone());
@@ -131,17 +142,22 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
             ev.params().max_frames
         ));
     }
-    let session = match &a.save_session {
-        Some(to) => {
-            let s = Session::of_run(&job, &run)
-                .map_err(|e| bad(format!("cannot read {}: {e}", a.image.display())))?
-                .stored_at(to);
-            Some(s.to_json().map_err(|e| bad(e.to_string()))?.into_bytes())
-        }
-        None => None,
-    };
-    write_outputs(files, &wanted, &out, &run.image, session)?;
-    note(&done_line(&name, &out, &wanted, a.save_session.as_deref()));
+    let mut extra = Vec::new();
+    if let Some(to) = &a.save_session {
+        let s = Session::of_run(&job, &run)
+            .map_err(|e| bad(format!("cannot read {}: {e}", a.image.display())))?
+            .stored_at(to);
+        extra.push(s.to_json().map_err(|e| bad(e.to_string()))?.into_bytes());
+    }
+    if a.save_classifier.is_some() {
+        let taught = run
+            .taught
+            .as_ref()
+            .expect("a run with --train or --classifier");
+        extra.push(crate::io::classifier::to_bytes(&taught.classifier));
+    }
+    write_outputs(files, &wanted, &out, &run.image, extra)?;
+    note(&done_line(&name, &out, &wanted, &extras));
     Ok(run.ev)
 }
 
@@ -151,7 +167,7 @@ pub(super) fn done_line(
     name: &str,
     out: &Outputs,
     wanted: &[(Format, &Path)],
-    session: Option<&Path>,
+    extra: &[&Path],
 ) -> String {
     let regions = crate::evolution::regions(out.set);
     let holes: usize = regions.iter().map(|r| r.holes.len()).sum();
@@ -160,7 +176,7 @@ pub(super) fn done_line(
         .iter()
         .map(|(_, p)| p.display().to_string())
         .collect();
-    written.extend(session.map(|p| p.display().to_string()));
+    written.extend(extra.iter().map(|p| p.display().to_string()));
     let wrote = if written.is_empty() {
         "no output asked for (--json, --mask, --csv, …)".to_string()
     } else {
@@ -213,8 +229,8 @@ pub fn replay(a: &ReplayArgs) -> Result<Evolver, Failure> {
         .map_err(|e| bad(e.to_string()))?;
     let name = file_name(&image_path);
     let out = Outputs::of(&run.ev, run.ev.contours(), &name).with_pixel_size(run.pixel.clone());
-    write_outputs(files, &wanted, &out, &run.image, None)?;
-    note(&done_line(&name, &out, &wanted, None));
+    write_outputs(files, &wanted, &out, &run.image, Vec::new())?;
+    note(&done_line(&name, &out, &wanted, &[]));
     Ok(run.ev)
 }
 
@@ -279,6 +295,7 @@ impl SegmentArgs {
             run,
             out: OutputArgs::default(),
             save_session: None,
+            save_classifier: None,
         })
     }
 }

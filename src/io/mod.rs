@@ -1,6 +1,7 @@
 //! Image loading and exports (DESIGN layer 5).
 
 pub mod atomic;
+pub mod classifier;
 pub mod export;
 pub mod folder;
 pub mod load;

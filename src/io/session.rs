@@ -15,6 +15,11 @@
 //! way, so no file needs converting. Unknown keys are refused (a typo is an error, not a
 //! silent default).
 //!
+//! A taught run ([`crate::learn::Teach`]) stores what taught it: the strokes, as runs
+//! ([`Strokes`]' serde form, a few kilobytes), from which the replay trains the same
+//! seeded forest again; or the classifier it was given, whole (a classifier trained
+//! elsewhere cannot be made again from this image).
+//!
 //! The engine is deterministic: the same image, shapes and parameters give the same
 //! contours frame by frame, so a replay equals the run that saved the session (the
 //! JSON output is byte-identical; tests/cli.rs checks it).
@@ -22,6 +27,7 @@
 use crate::evolution::{Edit, EvolveError, Field, Params, Shape};
 use crate::io::PixelSize;
 use crate::job::{Job, JobError, JobRun, Stop};
+use crate::learn::{Classifier, Strokes, Teach};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -74,6 +80,12 @@ pub struct Session {
     /// The pixel size the run was given (none: the file's, if it records one).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pixel_size: Option<PixelSize>,
+    /// The strokes a taught run was trained on.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub strokes: Option<Strokes>,
+    /// The classifier a taught run was given (not trained on `strokes`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub classifier: Option<Classifier>,
 }
 
 /// Why a session cannot be used.
@@ -91,6 +103,9 @@ pub enum SessionError {
     /// The evolution refused the saved shapes or parameters.
     #[error("the session cannot start: {0}")]
     Evolve(#[from] EvolveError),
+    /// The strokes or classifier the session holds cannot teach the run.
+    #[error("the session's {0}")]
+    Teach(String),
     /// A session stores its image path as text (JSON).
     #[error("cannot save a session of {}: its path is not valid UTF-8", .0.display())]
     PathNotUtf8(PathBuf),
@@ -147,18 +162,31 @@ impl Session {
             edits: Vec::new(),
             page: 0,
             pixel_size: None,
+            strokes: None,
+            classifier: None,
         })
     }
 
     /// The session of `job`'s run: the shapes it started from (automatic seeds as the
-    /// seeds they became), its first parameters, its edits, where it stopped.
+    /// seeds they became), its first parameters (a taught run: the job's, which the
+    /// replay reads the probabilities with again), its edits, where it stopped, what
+    /// taught it.
     pub fn of_run(job: &Job, run: &JobRun) -> std::io::Result<Self> {
         let ev = &run.ev;
+        let params = match job.teach {
+            Some(_) => job.params.clone(),
+            None => ev.start_params().clone(),
+        };
+        let (strokes, classifier) = match &job.teach {
+            Some(Teach::Strokes(s)) => (Some(Strokes::clone(s)), None),
+            Some(Teach::Classifier(c)) => (None, Some(Classifier::clone(c))),
+            None => (None, None),
+        };
         let s = Session::new(
             &job.image,
             &run.image,
             run.shapes.clone(),
-            ev.start_params().clone(),
+            params,
             ev.frames(),
             job.stop == Stop::Finished,
         )?;
@@ -166,6 +194,8 @@ impl Session {
             edits: ev.edits().to_vec(),
             page: run.page,
             pixel_size: job.pixel_size.clone(),
+            strokes,
+            classifier,
             ..s
         })
     }
@@ -233,6 +263,11 @@ impl Session {
                 ),
             ));
         }
+        if s.strokes.is_some() && s.classifier.is_some() {
+            return Err(refused(
+                "it holds both strokes and a classifier; a run is taught by one".into(),
+            ));
+        }
         Ok(s)
     }
 
@@ -264,7 +299,11 @@ impl Session {
                 Stop::AtFrame(self.frames)
             },
             pixel_size: self.pixel_size.clone(),
-            strokes: None,
+            teach: match (&self.strokes, &self.classifier) {
+                (Some(s), _) => Some(Teach::strokes(s.clone())),
+                (None, Some(c)) => Some(Teach::classifier(c.clone())),
+                (None, None) => None,
+            },
         }
     }
 
@@ -288,6 +327,10 @@ impl Session {
         }
         job.run_on(field, info).map_err(|e| match e {
             JobError::Evolve(e) => SessionError::Evolve(e),
+            JobError::Teach(e) => SessionError::Teach(match self.strokes {
+                Some(_) => format!("strokes cannot be used: {e}"),
+                None => format!("classifier cannot be used: {e}"),
+            }),
             other => SessionError::Image(path.clone(), other.to_string()),
         })
     }

@@ -52,7 +52,7 @@ impl Default for ForestParams {
 }
 
 /// A node: a split (`feature`, `threshold`: values ≤ it go `left`), or a leaf whose
-/// children are itself and whose threshold lets every value through.
+/// children are itself (so its threshold does not matter).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Node {
     /// The feature compared.
@@ -230,7 +230,8 @@ impl Grower<'_> {
             let w: f64 = total.iter().sum();
             self.nodes.push(Node {
                 feature: 0,
-                threshold: f32::INFINITY,
+                // Either way leads back here; finite, so the file (JSON) holds it.
+                threshold: 0.0,
                 left: at,
                 right: at,
             });
@@ -392,6 +393,46 @@ impl Forest {
                 }
             }
         }
+    }
+
+    /// Why the forest cannot be walked over `features` features into `classes`
+    /// classes (a damaged or foreign file), or `None`: every tree's walks end in a leaf
+    /// within its depth, and every index is in range.
+    pub fn misfit(&self, features: usize, classes: usize) -> Option<String> {
+        if (self.features, self.classes) != (features, classes) {
+            return Some(format!(
+                "{} features and {} classes, expected {features} and {classes}",
+                self.features, self.classes
+            ));
+        }
+        let n = self.nodes.len();
+        if self.leaf_of.len() != n || self.roots.is_empty() {
+            return Some("node tables of different lengths".into());
+        }
+        let mut stack: Vec<(u32, u32)> = Vec::new();
+        for &(root, depth) in &self.roots {
+            stack.push((root, 0));
+            while let Some((at, level)) = stack.pop() {
+                let Some(nd) = self.nodes.get(at as usize) else {
+                    return Some(format!("node {at} of {n}"));
+                };
+                if nd.left == at && nd.right == at {
+                    let o = self.leaf_of[at as usize] as usize;
+                    if o.checked_add(classes)
+                        .is_none_or(|e| e > self.leaf_values.len())
+                    {
+                        return Some(format!("leaf {at} has no class distribution"));
+                    }
+                } else if level >= depth || nd.feature as usize >= features {
+                    return Some(format!(
+                        "node {at} splits past its tree's depth or features"
+                    ));
+                } else {
+                    stack.extend([(nd.left, level + 1), (nd.right, level + 1)]);
+                }
+            }
+        }
+        None
     }
 
     /// The class distribution of one sample (`features` values).

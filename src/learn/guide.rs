@@ -14,7 +14,7 @@
 //! The seeds ([`seeds`]) are the connected interiors of P(object) > max(P(background),
 //! P(boundary)): the boundary band cuts touching objects apart.
 
-use super::{Classifier, FeatureSet, ForestParams, Probabilities, Strokes};
+use super::Probabilities;
 use super::{BACKGROUND, BOUNDARY, OBJECT};
 use crate::evolution::{Mode, Params, Polarity};
 use crate::geometry::Point;
@@ -35,15 +35,6 @@ pub struct Guide {
 }
 
 impl Guide {
-    /// Trains a classifier on `strokes` painted on `image` and predicts the image;
-    /// `params` are the run's (its mode chooses the field).
-    pub fn train(image: &Field, strokes: &Strokes, params: &Params) -> Self {
-        let set = FeatureSet::default();
-        let features = set.compute(image.width, image.height, &image.data);
-        let clf = Classifier::train_with(set, &features, strokes, &ForestParams::default());
-        Self::new(clf.predict(&features), params)
-    }
-
     /// The guide of known probabilities.
     pub fn new(probabilities: Probabilities, params: &Params) -> Self {
         let field = probability_field(&probabilities, params.mode != Mode::Adaptive);

@@ -12,19 +12,29 @@ pub mod filters;
 pub mod forest;
 pub mod guide;
 pub mod strokes;
+pub mod teach;
 
 pub use features::{FeatureSet, Features};
 pub use forest::{Forest, ForestParams};
 pub use strokes::{StrokeError, Strokes, BACKGROUND, BOUNDARY, OBJECT};
+pub use teach::{Taught, Teach, TeachError};
+
+/// Channels of the images a classifier reads: images are read as one gray channel.
+pub const CHANNELS: u32 = 1;
 
 /// A trained pixel classifier: the features it reads, the stroke labels of its classes
 /// and the forest.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Classifier {
     /// The feature definitions' version ([`features::FEATURE_VERSION`]).
     pub feature_version: u32,
     /// The features.
     pub features: FeatureSet,
+    /// Channels of the images it was trained on ([`CHANNELS`]).
+    pub channels: u32,
+    /// The names of the images it was trained on (for the user; not checked).
+    pub images: Vec<String>,
     /// The stroke label of each class index (1 background, 2 object, 3 boundary).
     pub labels: Vec<u8>,
     /// How the forest was grown.
@@ -85,29 +95,81 @@ impl Classifier {
         strokes: &Strokes,
         params: &ForestParams,
     ) -> Self {
-        assert_eq!(
-            (features.width, features.height),
-            (strokes.width, strokes.height),
-            "features and strokes size"
-        );
-        let labels = strokes.classes();
-        let nf = features.planes.len();
+        Self::train_many(set, &[(features, strokes)], params)
+    }
+
+    /// Trains on the pixels the strokes of several images label (each pair one image's
+    /// features and strokes, all made by `set`); the classes are those any image marks.
+    ///
+    /// # Panics
+    /// If a pair differs in size, or `pairs` is empty.
+    pub fn train_many(
+        set: FeatureSet,
+        pairs: &[(&Features, &Strokes)],
+        params: &ForestParams,
+    ) -> Self {
+        assert!(!pairs.is_empty(), "no training image");
+        let mut labels: Vec<u8> = pairs.iter().flat_map(|(_, s)| s.classes()).collect();
+        labels.sort_unstable();
+        labels.dedup();
+        let nf = set.len();
         let mut x = Vec::new();
         let mut y = Vec::new();
-        for (i, &l) in strokes.labels.iter().enumerate() {
-            if let Some(k) = labels.iter().position(|&c| c == l) {
-                x.extend(features.planes.iter().map(|p| p[i]));
-                y.push(k as u8);
+        for (features, strokes) in pairs {
+            assert_eq!(
+                (features.width, features.height, features.planes.len()),
+                (strokes.width, strokes.height, nf),
+                "features and strokes size"
+            );
+            for (i, &l) in strokes.labels.iter().enumerate() {
+                if let Some(k) = labels.iter().position(|&c| c == l) {
+                    x.extend(features.planes.iter().map(|p| p[i]));
+                    y.push(k as u8);
+                }
             }
         }
         let forest = Forest::train(&x, &y, nf, labels.len(), params);
         Classifier {
             feature_version: features::FEATURE_VERSION,
             features: set,
+            channels: CHANNELS,
+            images: Vec::new(),
             labels,
             params: *params,
             forest,
         }
+    }
+
+    /// Why this build cannot apply the classifier (other features, channels or classes),
+    /// or `None` when it fits.
+    pub fn misfit(&self) -> Option<String> {
+        let want = features::FEATURE_VERSION;
+        if self.feature_version != want {
+            return Some(format!(
+                "it reads features of version {}, this build computes version {want}; train it again",
+                self.feature_version
+            ));
+        }
+        if self.channels != CHANNELS {
+            return Some(format!(
+                "it was trained on {}-channel images, this build reads images as {CHANNELS} gray channel",
+                self.channels
+            ));
+        }
+        let labels_ok = self.labels.windows(2).all(|w| w[0] < w[1])
+            && self
+                .labels
+                .iter()
+                .all(|l| (BACKGROUND..=BOUNDARY).contains(l));
+        if !labels_ok || !self.labels.contains(&OBJECT) || self.labels.len() < 2 {
+            return Some(format!(
+                "its classes {:?} are not object (2) and background (1) or boundary (3)",
+                self.labels
+            ));
+        }
+        self.forest
+            .misfit(self.features.len(), self.labels.len())
+            .map(|why| format!("its forest is damaged: {why}"))
     }
 
     /// The class probabilities of every pixel of `features`.
