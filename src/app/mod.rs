@@ -20,6 +20,8 @@ mod panels;
 mod path_prompt;
 mod playback;
 mod run;
+mod train;
+mod train_run;
 mod view;
 
 pub use crate::io::export::Format;
@@ -31,6 +33,7 @@ pub use movie::{MovieDoc, TrackJob, Tracking};
 pub use path_prompt::{PathPrompt, PathPurpose};
 pub use playback::{Preparing, PREPARE_IN_BACKGROUND};
 pub use run::{FrameRecord, RingView, Run};
+pub use train::{Map, Trainer, Training};
 pub use view::{Prefs, Status, ViewState, BRUSH_RADIUS};
 
 use crate::evolution::Field;
@@ -66,6 +69,8 @@ pub struct Jobs {
     pub preparing: Option<Preparing>,
     /// A movie being tracked.
     pub track: Option<TrackJob>,
+    /// The probability map of the training strokes, made in the background.
+    pub trainer: train::Trainer,
 }
 
 /// What a view reads and where it sends its commands: the document only to read.
@@ -175,6 +180,7 @@ impl TopoApp {
             self.view.egui_ctx = Some(ctx.clone());
         }
         self.poll_tracking();
+        self.poll_map();
         let mut cx = Ctx {
             doc: &self.doc,
             view: &mut self.view,
@@ -193,6 +199,7 @@ impl TopoApp {
         egui::CentralPanel::default().show(ui, |ui| canvas::canvas_ui(&mut cx, ui));
         self.status.draw_ms = t.elapsed().as_secs_f64() * 1e3;
         self.apply();
+        self.request_map();
         self.tick(dt);
         if self.view.playing {
             ctx.request_repaint();

@@ -42,8 +42,13 @@ impl TopoApp {
             self.status.error = Some(AppError::NoImage);
             return false;
         };
+        // A taught run reads the probability map, as a taught job does.
+        let (image, params) = match self.guide_for_run() {
+            Some(g) => (std::sync::Arc::new(g.field), g.params),
+            None => (image, self.doc.params().clone()),
+        };
         let shapes = self.doc.shapes.clone();
-        let (params, compare) = (self.doc.params().clone(), self.doc.settings.compare);
+        let compare = self.doc.settings.compare;
         let large = image.width * image.height > PREPARE_IN_BACKGROUND;
         let build = move || {
             let second = compare.map(|mode| {

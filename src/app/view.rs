@@ -22,6 +22,10 @@ pub struct Prefs {
     pub brush_radius: f64,
     /// The folder of the last file opened.
     pub last_dir: Option<PathBuf>,
+    /// The label the Train tool paints: 1 background, 2 object, 3 boundary, 0 erase.
+    pub train_label: u8,
+    /// The probability map shows over the image.
+    pub show_probabilities: bool,
 }
 
 impl Default for Prefs {
@@ -32,6 +36,8 @@ impl Default for Prefs {
             show_fill: true,
             brush_radius: 8.0,
             last_dir: None,
+            train_label: crate::learn::OBJECT,
+            show_probabilities: true,
         }
     }
 }
