@@ -92,7 +92,7 @@ impl Training {
     /// What a map for `image` teaches from now is of (none: nothing teaches).
     pub fn key(&self, image: &Arc<Field>) -> Option<Key> {
         (self.trainable() || self.loaded.is_some())
-            .then(|| (self.revision, Arc::as_ptr(image) as usize))
+            .then_some((self.revision, Arc::as_ptr(image) as usize))
     }
 
     /// What teaches the run: valid strokes first, else the loaded classifier.
@@ -182,7 +182,7 @@ struct Request {
 #[derive(Default)]
 pub struct Trainer {
     tx: Option<Sender<Request>>,
-    rx: Option<Receiver<(Key, Result<Taught, String>)>>,
+    rx: Option<Receiver<Answer>>,
     /// The map last asked for, and when.
     pub requested: Option<(Key, Instant)>,
     /// The newest map accepted.
@@ -266,10 +266,11 @@ impl Trainer {
     }
 }
 
+/// What the thread answers: the map's key and the map (or why teaching failed).
+type Answer = (Key, Result<Taught, String>);
+
 /// The thread: waits for a request, skips to the newest waiting, answers it.
-fn spawn(
-    wake: Option<egui::Context>,
-) -> (Sender<Request>, Receiver<(Key, Result<Taught, String>)>) {
+fn spawn(wake: Option<egui::Context>) -> (Sender<Request>, Receiver<Answer>) {
     let (tx, requests) = channel::<Request>();
     let (answers, rx) = channel();
     std::thread::spawn(move || {
