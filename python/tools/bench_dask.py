@@ -7,13 +7,12 @@
    thread; the cluster is started before the clock).
 2. segment_large on generated images (6000^2 with 1,500 objects, 16k^2 with the same
    density) in 2048^2 tiles: wall time, the peak resident memory of each worker (its
-   ru_maxrss; a fresh cluster per figure), and the objects against the generated truth.
+   VmHWM; a fresh cluster per figure), and the objects against the generated truth.
 3. The peer: dask-image, a Gaussian smoothing by map_overlap, Otsu's threshold, and
    ndmeasure.label, on the same cluster and image.
 """
 
 import argparse
-import resource
 import shutil
 import subprocess
 import sys
@@ -26,10 +25,6 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "tests"))
 from test_distributed import blobs, write_png  # noqa: E402
-
-
-def peak_mb():
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
 def cluster():
@@ -82,9 +77,15 @@ def truth_iou(labels, cells):
     return hits / len(cells)
 
 
+def vm_hwm_mb():
+    """This process's peak resident memory (VmHWM: reset by exec, unlike ru_maxrss, which a
+    spawned worker inherits from the process that forked it)."""
+    with open("/proc/self/status") as f:
+        return next(int(line.split()[1]) for line in f if line.startswith("VmHWM")) / 1024
+
+
 def worker_peaks(client):
-    return [v / 1024 for v in client.run(
-        lambda: resource.getrusage(resource.RUSAGE_SELF).ru_maxrss).values()]
+    return list(client.run(vm_hwm_mb).values())
 
 
 def bench_large(size, tile):

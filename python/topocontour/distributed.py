@@ -3,23 +3,19 @@
 SLURMCluster, ...). Dask schedules, retries and shows progress; nothing here is a
 scheduler of its own.
 
-`map_images` writes what `topocontour batch` writes: the same file names (the stem rule
-of `io::folder::output_stems`), the same bytes, and the same `summary.csv`. Each image's
-outputs are written all or nothing (temporaries renamed into place) and then a small
-record in `OUT/.topocontour/` says that image is done with these settings; a retried or
-re-run task finds the record and does not segment the image again, so no output is ever
-written twice under two names and a killed worker loses only the images it was on,
-which Dask runs again elsewhere.
+`map_images` writes what `topocontour batch` writes: the same names (the stem rule of
+`io::folder::output_stems`), bytes and `summary.csv`. An image's outputs are renamed into
+place together, then a record in `OUT/.topocontour/` says it is done with these
+settings: a retried or re-run task finds it and skips the image, so nothing is written
+twice and a killed worker loses only the images Dask then runs again elsewhere.
 
-`segment_large` cuts the image into tiles with an overlap, segments each tile with
-automatic seeds, and keeps an object only in the tile whose core holds its
-lowest-leftmost point (the ownership rule of StarDist's big-image prediction, Weigert
-et al. 2020, "Star-convex polyhedra", sec. 2.4 and `stardist.big`), so each object comes
-out once and whole. An object of a tile's core that reaches the cut edge of the tile's
-overlap would be cut there: that is refused with one line naming the overlap needed.
-The labels go into a zarr array chunked by the tiles' cores: each chunk is written by
-one task from the objects of its tile and of the eight around it, so no worker holds the
-whole image.
+`segment_large` segments overlapping tiles with automatic seeds and keeps an object only
+in the tile whose core holds its lowest-leftmost point (the ownership rule of StarDist's
+big-image prediction, `stardist.big`), so each object comes out once and whole. An owned
+object reaching a cut edge of its tile, or a part of an object seen at a cut edge that
+no tile owns, is refused in one line naming the overlap. The labels go into a zarr
+array chunked by the tiles' cores, each chunk written by one task from its tile's and
+its eight neighbours' objects: no worker holds the whole image.
 """
 
 from __future__ import annotations
@@ -38,23 +34,17 @@ import numpy as np
 import topocontour
 
 IMAGE_EXTENSIONS = (".png", ".jpg", ".jpeg", ".tif", ".tiff")
-SUMMARY_HEADER = (
-    "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,mean_intensity,contour\n"
-)
+SUMMARY_HEADER = "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,mean_intensity,contour\n"
 # batch's formats whose bytes the bindings give (Result.to_<format>), with their names;
 # the others (mask, labels, overlay, roi) need the Rust encoders, so they are refused.
 FORMATS = {"json": "{}.json", "geojson": "{}.geojson", "csv": "{}.csv", "svg": "{}.svg"}
 RECORDS = ".topocontour"
 
 
-# --------------------------------------------------------------------------- images
-
-
 def list_images(folder):
     """The images of `folder` as `batch` lists them: regular files ending in .png, .jpg,
     .jpeg, .tif or .tiff (any case), not its subfolders, in name order."""
-    folder = Path(folder)
-    found = [p for p in folder.iterdir() if p.is_file() and p.suffix.lower() in IMAGE_EXTENSIONS]
+    found = [p for p in Path(folder).iterdir() if p.is_file() and p.suffix.lower() in IMAGE_EXTENSIONS]
     return sorted(found, key=os.fsencode)
 
 
@@ -71,10 +61,8 @@ def output_stems(paths):
     seen = {}
     for p, c in zip(paths, chosen):
         if c.lower() in seen:
-            raise ValueError(
-                f"{Path(seen[c.lower()]).name} and {Path(p).name} would get the same "
-                f"output names ({c}.*); rename one"
-            )
+            raise ValueError(f"{Path(seen[c.lower()]).name} and {Path(p).name} would get "
+                             f"the same output names ({c}.*); rename one")
         seen[c.lower()] = p
     return chosen
 
@@ -95,7 +83,8 @@ def _ring_measures(pts):
     d = p - q
     total = lambda v: float(np.cumsum(v)[-1]) if len(v) else 0.0  # noqa: E731
     per = total(np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1]))
-    return 0.5 * total(c), total((p[:, 0] + q[:, 0]) * c) / 6.0, total((p[:, 1] + q[:, 1]) * c) / 6.0, per
+    mx, my = total((p[:, 0] + q[:, 0]) * c) / 6.0, total((p[:, 1] + q[:, 1]) * c) / 6.0
+    return 0.5 * total(c), mx, my, per
 
 
 def summary_rows(name, result, image):
@@ -118,10 +107,8 @@ def summary_rows(name, result, image):
         cx, cy = (mx * (1.0 / area), my * (1.0 / area)) if area != 0.0 else (0.0, 0.0)
         circ = 4.0 * math.pi * area / (per * per) if per > 0.0 else 0.0
         mean = sums[k + 1] / max(counts[k + 1], 1)
-        rows.append(
-            f"{quoted},{k + 1},{area:.3f},{per:.3f},{circ:.4f},{cx:.3f},{cy:.3f},"
-            f"{len(holes)},{mean:.5f},{o['id']}\n"
-        )
+        rows.append(f"{quoted},{k + 1},{area:.3f},{per:.3f},{circ:.4f},{cx:.3f},{cy:.3f},"
+                    f"{len(holes)},{mean:.5f},{o['id']}\n")
     return "".join(rows)
 
 
@@ -157,9 +144,8 @@ def _record(out_dir, stem):
 
 def _done_rows(path, stem, out_dir, formats, params):
     """The summary rows of an image already done with these settings, else None."""
-    rec = _record(out_dir, stem)
     try:
-        r = json.loads(rec.read_text())
+        r = json.loads(_record(out_dir, stem).read_text())
     except (OSError, ValueError):
         return None
     outputs = [Path(out_dir) / FORMATS[f].format(stem) for f in formats]
@@ -178,9 +164,8 @@ def _one_image(path, stem, out_dir, formats, params):
     page = params.get("page") or 1  # the CLI's --page counts from 1, load from 0
     rows = summary_rows(name, result, np.asarray(topocontour.load(str(path), page=page - 1)))
     out_dir = Path(out_dir)
-    _write_all(
-        {out_dir / FORMATS[f].format(stem): getattr(result, f"to_{f}")().encode() for f in formats}
-    )
+    _write_all({out_dir / FORMATS[f].format(stem): getattr(result, f"to_{f}")().encode()
+                for f in formats})
     record = json.dumps({"key": _settings_key(path, formats, params), "rows": rows})
     _write_all({_record(out_dir, stem): record.encode()})
     return rows
@@ -200,8 +185,7 @@ def _image_batch(items, out_dir, formats, params):
 
 @dataclass
 class MapReport:
-    """What `map_images` did: images done, skipped as already done, and failed
-    (path -> the one-line reason, as batch prints it)."""
+    """What `map_images` did: images done, skipped (done before), failed (path -> why)."""
 
     done: int = 0
     skipped: int = 0
@@ -214,10 +198,9 @@ def _check_formats(formats):
     formats = [formats] if isinstance(formats, str) else list(formats)
     for i, f in enumerate(formats):
         if f not in FORMATS:
-            raise ValueError(
-                f"format {f!r} is not written by map_images (it writes {', '.join(FORMATS)}); "
-                "use `topocontour batch` for mask, labels, overlay or roi"
-            )
+            raise ValueError(f"format {f!r} is not written by map_images (it writes "
+                             f"{', '.join(FORMATS)}); use `topocontour batch` for mask, "
+                             "labels, overlay or roi")
         if f in formats[:i]:
             raise ValueError(f"formats names {f} twice")
     if not formats:
@@ -233,8 +216,7 @@ def map_images(paths, out_dir, *, client, formats=("json",), per_task=None, prog
     Images already done with the same settings (a re-run) are skipped; a failing image
     is reported in the returned `MapReport` and the others go on."""
     if isinstance(paths, (str, os.PathLike)) and Path(paths).is_dir():
-        paths = list_images(paths)
-        if not paths:
+        if not (paths := list_images(paths)):
             raise ValueError("the folder holds no PNG, JPEG or TIFF image")
     paths = [Path(p) for p in paths]
     stems = output_stems(paths)
@@ -244,8 +226,7 @@ def map_images(paths, out_dir, *, client, formats=("json",), per_task=None, prog
     report = MapReport(summary=out_dir / "summary.csv")
     if not os.access(out_dir, os.W_OK):  # as batch, refused before any work
         raise ValueError(f"cannot write {report.summary}: the folder is not writable")
-    rows = {}
-    todo = []
+    rows, todo = {}, []
     for p, s in zip(paths, stems):
         r = _done_rows(p, s, out_dir, formats, params)
         if r is None:
@@ -257,11 +238,9 @@ def map_images(paths, out_dir, *, client, formats=("json",), per_task=None, prog
         per_task = max(1, min(8, len(todo) // (8 * threads)))
     batches = [todo[i:i + per_task] for i in range(0, len(todo), per_task)]
     token = uuid.uuid4().hex[:8]
-    futures = [
-        client.submit(_image_batch, b, str(out_dir), formats, params, retries=retries,
-                      key=f"topocontour-images-{token}-{i}", pure=False)
-        for i, b in enumerate(batches)
-    ]
+    futures = [client.submit(_image_batch, b, str(out_dir), formats, params, retries=retries,
+                             key=f"topocontour-images-{token}-{i}", pure=False)
+               for i, b in enumerate(batches)]
     if progress and futures:
         from dask.distributed import progress as show
 
@@ -276,9 +255,6 @@ def map_images(paths, out_dir, *, client, formats=("json",), per_task=None, prog
     report.objects = sum(rows[s].count("\n") for s in rows)
     _write_all({report.summary: text.encode()})
     return report
-
-
-# --------------------------------------------------------------------------- one large image
 
 
 @dataclass
@@ -310,47 +286,72 @@ def _grid(height, width, tile, overlap):
     return tiles
 
 
+def _deepest_pixel(mask):
+    """(row, column) of a pixel deepest inside `mask` (the last erosion not empty)."""
+    inner = mask
+    while True:
+        e = inner.copy()
+        e[1:] &= inner[:-1]
+        e[:-1] &= inner[1:]
+        e[:, 1:] &= inner[:, :-1]
+        e[:, :-1] &= inner[:, 1:]
+        if not e.any():
+            break
+        inner = e
+    ys, xs = np.nonzero(inner)
+    return int(ys[len(ys) // 2]), int(xs[len(xs) // 2])
+
+
 def _segment_tile(data, core, region, shape, overlap, reach, params):
-    """Segments one tile's region; returns its owned objects (rings shifted to image
-    coordinates, the label crop from the engine's own raster) or the refusal of one that
-    reaches a cut edge of the overlap."""
+    """Segments one tile's region. Returns ("ok", owned objects (rings shifted to image
+    coordinates, the label crop from the engine's own raster), probes: a pixel deep
+    inside each object that leaves the region, which its owner must cover), or
+    ("refused", why) for an owned object that reaches a cut edge of the overlap."""
     ry0, ry1, rx0, rx1 = region
-    result = topocontour.segment(np.ascontiguousarray(data), auto_seeds=True, **params)
+    try:
+        result = topocontour.segment(np.ascontiguousarray(data), auto_seeds=True, **params)
+    except ValueError as e:
+        if "automatic seeds found no" in str(e):  # a tile of background alone
+            return ("ok", [], [])
+        raise
     labels = np.asarray(result.labels())
     contours = result.contours
-    outer = [c for c in contours if not c["hole"]]
     # A cut edge is a side of the region inside the image; the image's own border is not.
     cut = (ry0 > 0, ry1 < shape[0], rx0 > 0, rx1 < shape[1])
-    kept = []
-    for k, o in enumerate(outer):
+    kept, probes = [], []
+    for k, o in enumerate(c for c in contours if not c["hole"]):
         pts = o["points"]
         order = np.lexsort((pts[:, 0], pts[:, 1]))[0]  # lowest y, then lowest x
         ax, ay = pts[order, 0] + rx0, pts[order, 1] + ry0
-        if not (core[0] <= ay < core[1] and core[2] <= ax < core[3]):
-            continue
         lo, hi = pts.min(axis=0), pts.max(axis=0)
-        edges = (lo[1] < reach, hi[1] > (ry1 - ry0) - reach, lo[0] < reach, hi[0] > (rx1 - rx0) - reach)
-        if any(c and e for c, e in zip(cut, edges)):
-            size = int(math.ceil(max(hi - lo))) + reach
-            return ("refused", (
-                f"an object at ({ax:.0f}, {ay:.0f}) spans {size - reach} px and reaches the "
-                f"edge of its tile's {overlap} px overlap: give overlap of at least {size} px "
-                f"(the object plus the {reach} px reach), a multiple of 64"))
-        rings = [o] + [c for c in contours if c["hole"] and c["parent"] == o["id"]]
         y0, x0 = max(int(lo[1]) - 1, 0), max(int(lo[0]) - 1, 0)
         y1, x1 = min(int(hi[1]) + 2, ry1 - ry0), min(int(hi[0]) + 2, rx1 - rx0)
         crop = labels[y0:y1, x0:x1] == k + 1
+        near = (lo[1] < reach, hi[1] > (ry1 - ry0) - reach, lo[0] < reach, hi[0] > (rx1 - rx0) - reach)
+        near_cut = any(c and e for c, e in zip(cut, near))
+        if not (core[0] <= ay < core[1] and core[2] <= ax < core[3]):
+            if near_cut and crop.any():
+                py, px = _deepest_pixel(crop)
+                probes.append((py + y0 + ry0, px + x0 + rx0))
+            continue
+        if near_cut:
+            size = int(math.ceil(max(hi - lo))) + reach
+            return ("refused", (
+                f"an object at ({ax:.0f}, {ay:.0f}) spans {size - reach} px and reaches the "
+                f"edge of its tile's {overlap} px overlap: give overlap={-(-size // 64) * 64} "
+                f"or more (the object plus the {reach} px reach)"))
+        rings = [o] + [c for c in contours if c["hole"] and c["parent"] == o["id"]]
         kept.append({
             "rings": [(r["hole"], r["area"], r["points"] + (rx0, ry0)) for r in rings],
-            "anchor": (ay, ax), "box": (y0 + ry0, x0 + rx0), "crop": np.packbits(crop),
-            "crop_shape": crop.shape, "nested_in": o["parent"],
+            "box": (y0 + ry0, x0 + rx0), "crop": np.packbits(crop), "crop_shape": crop.shape,
         })
-    return ("ok", kept)
+    return ("ok", kept, probes)
 
 
-def _write_chunk(path, core, pieces):
-    """Writes one output chunk (a tile's core) from the objects that reach into it:
-    pieces is a list of (first label, that tile's kept objects)."""
+def _write_chunk(path, core, pieces, probes):
+    """Writes one output chunk (a tile's core) from the objects that reach into it
+    (pieces: (first label, that tile's kept objects)); returns the probes in the core
+    that no kept object covers."""
     import zarr
 
     cy0, cy1, cx0, cx1 = core
@@ -362,12 +363,11 @@ def _write_chunk(path, core, pieces):
             by, bx = obj["box"]
             ys, xs = max(by, cy0), max(bx, cx0)
             ye, xe = min(by + h, cy1), min(bx + w, cx1)
-            if ys >= ye or xs >= xe:
-                continue
-            part = crop[ys - by:ye - by, xs - bx:xe - bx]
-            out[ys - cy0:ye - cy0, xs - cx0:xe - cx0][part] = first + j
+            if ys < ye and xs < xe:
+                part = crop[ys - by:ye - by, xs - bx:xe - bx]
+                out[ys - cy0:ye - cy0, xs - cx0:xe - cx0][part] = first + j
     zarr.open_array(path, mode="r+")[cy0:cy1, cx0:cx1] = out
-    return int(np.count_nonzero(out))
+    return [(y, x) for y, x in probes if not out[y - cy0, x - cx0]]
 
 
 def _tile_data(client, array, region):
@@ -411,30 +411,36 @@ def segment_large(array, *, tile=4096, overlap=None, client, out=None, reach=16,
     segs = [client.submit(_segment_tile, _tile_data(client, array, region), core, region,
                           (height, width), overlap, reach, params, pure=False)
             for core, region in tiles]
-    counted = client.gather(
-        [client.submit(lambda r: (r[0], len(r[1]) if r[0] == "ok" else r[1]), s) for s in segs])
-    for status, value in counted:
-        if status == "refused":
-            raise ValueError(value)
-    firsts = np.concatenate([[1], 1 + np.cumsum([n for _, n in counted])])[:-1]
+    counted = client.gather([client.submit(  # only counts and probes come here
+        lambda r: (r[0], len(r[1]), r[2]) if r[0] == "ok" else r, s) for s in segs])
+    refused = [c[1] for c in counted if c[0] == "refused"]
+    if refused:
+        raise ValueError(refused[0])
+    firsts = np.concatenate([[1], 1 + np.cumsum([c[1] for c in counted])])[:-1]
     per_row = math.ceil(width / tile)
     writes = []
     for t, (core, _) in enumerate(tiles):
         ty, tx = divmod(t, per_row)
-        near = [n for n in range(len(tiles)) if abs(n // per_row - ty) <= 1 and abs(n % per_row - tx) <= 1]
+        near = [n for n in range(len(tiles))
+                if abs(n // per_row - ty) <= 1 and abs(n % per_row - tx) <= 1]
         pieces = [client.submit(lambda r, f: (f, r[1]), segs[n], int(firsts[n])) for n in near]
-        writes.append(client.submit(_write_chunk, out, core, pieces, pure=False))
-    client.gather(writes)
-    return LargeResult(_gather_contours(client, segs, firsts), labels, tile, overlap)
+        probes = [p for n in near for p in counted[n][2]
+                  if core[0] <= p[0] < core[1] and core[2] <= p[1] < core[3]]
+        writes.append(client.submit(_write_chunk, out, core, pieces, probes, pure=False))
+    lost = [p for w in client.gather(writes) for p in w]
+    if lost:
+        raise ValueError(f"an object at ({lost[0][1]}, {lost[0][0]}) is larger than the "
+                         f"{overlap} px overlap, so no tile sees it whole: give segment_large "
+                         f"a larger overlap (the largest object plus {reach} px)")
+    return LargeResult(_gather_contours(segs, firsts), labels, tile, overlap)
 
 
-def _gather_contours(client, segs, firsts):
+def _gather_contours(segs, firsts):
     """The kept objects' rings, renumbered: ring ids in order over the whole image, each
     hole's parent its object's outer ring, an object's label its number in `labels`."""
     contours, next_id = [], 0
     for seg, first in zip(segs, firsts):
-        _, kept = seg.result()
-        for j, obj in enumerate(kept):
+        for j, obj in enumerate(seg.result()[1]):
             outer_id = next_id
             for hole, area, pts in obj["rings"]:
                 contours.append({"id": next_id, "hole": hole, "parent": outer_id if hole else None,
