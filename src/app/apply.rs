@@ -21,6 +21,7 @@ impl TopoApp {
             Group::Playback => self.playback(c),
             Group::Parameters => self.set_parameter(c),
             Group::Files => self.files(c),
+            Group::Movie => self.movie_command(c),
         }
     }
 

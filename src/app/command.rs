@@ -148,6 +148,22 @@ pub enum Command {
     Undo,
     /// Redo what Undo undid (Ctrl+Shift+Z, Ctrl+Y).
     Redo,
+    /// Open a movie: a multi-page TIFF or a folder of frames.
+    OpenMovie(PathBuf),
+    /// Choose a movie in a dialog (a folder when true, else a TIFF), then open it.
+    OpenMovieDialog(bool),
+    /// Show frame `n` of the movie (0-based; the evolution's run starts again).
+    SeekMovieFrame(usize),
+    /// Track the movie from frame 0 in the background.
+    Track,
+    /// Stop tracking after the frame in progress (the frames tracked are kept).
+    CancelTrack,
+    /// Select a track (its outline is highlighted, its row in the lineage view).
+    SelectTrack(Option<u32>),
+    /// Write the tracking result in the Cell Tracking Challenge layout to a folder.
+    ExportCtc(PathBuf),
+    /// Choose the folder in a dialog, then export the tracking result.
+    ExportCtcDialog,
 }
 
 /// The handler a command goes to.
@@ -165,6 +181,8 @@ pub enum Group {
     Parameters,
     /// Images, exports, sessions, folders.
     Files,
+    /// Movies and tracking.
+    Movie,
 }
 
 /// How a command joins the undo history.
@@ -227,6 +245,8 @@ impl Command {
             OpenImage(..) | OpenDialog | Export(..) | ExportDialog(..) | SessionDialog(..)
             | SaveSession(..) | OpenSession(..) | ApplyToFolder(..) | ApplyToFolderDialog
             | CancelFolder => Group::Files,
+            OpenMovie(..) | OpenMovieDialog(..) | SeekMovieFrame(..) | Track | CancelTrack
+            | SelectTrack(..) | ExportCtc(..) | ExportCtcDialog => Group::Movie,
         }
     }
 
@@ -245,7 +265,7 @@ impl Command {
             OpenImage(_) | OpenSession(_) | AddShape(_) | DeleteShape(_) | WrapBorder(_)
             | FindSeeds | SetPolarity(_) | SetModality(_) | SetOpenHoles(_) | SetMode(_)
             | SetBroadPhase(_) | SetCompare(_) | Reset | ResetParameters | SetPage(_)
-            | DeleteContour(_) => Some(UndoKey::Step),
+            | DeleteContour(_) | OpenMovie(_) => Some(UndoKey::Step),
             GrabVertex { .. }
             | SelectContour(_)
             | Undo
@@ -264,7 +284,14 @@ impl Command {
             | SaveSession(_)
             | ApplyToFolder(_)
             | ApplyToFolderDialog
-            | CancelFolder => None,
+            | CancelFolder
+            | OpenMovieDialog(_)
+            | SeekMovieFrame(_)
+            | Track
+            | CancelTrack
+            | SelectTrack(_)
+            | ExportCtc(_)
+            | ExportCtcDialog => None,
         }
     }
 }

@@ -34,6 +34,8 @@ pub struct Document {
     pub run_b: Option<Run>,
     /// The recorded frame on screen.
     pub shown: usize,
+    /// The movie the image is a frame of, with what tracking found.
+    pub movie: Option<super::MovieDoc>,
 }
 
 /// The settings of a document's run: reset for every image opened (each image has its own

@@ -41,6 +41,9 @@ pub enum AppError {
     /// An output could not be written.
     #[error(transparent)]
     Output(#[from] crate::io::OutputError),
+    /// A movie could not be opened, read or tracked, or its result written.
+    #[error("{0}")]
+    Movie(String),
     /// Another I/O failure, with the file.
     #[error("{}: {source}", .path.display())]
     Io {
@@ -79,7 +82,7 @@ impl TopoApp {
     }
 
     /// A file dialog opening in the folder of the last file opened.
-    fn dialog(&self) -> rfd::FileDialog {
+    pub(super) fn dialog(&self) -> rfd::FileDialog {
         let d = rfd::FileDialog::new();
         match &self.view.prefs.last_dir {
             Some(dir) => d.set_directory(dir),

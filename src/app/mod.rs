@@ -14,6 +14,7 @@ mod folder;
 mod hand;
 mod history;
 mod keys;
+mod movie;
 mod objects;
 mod panels;
 mod path_prompt;
@@ -26,6 +27,7 @@ pub use command::{Command, Gesture, Group, Tool, UndoKey};
 pub use document::{Document, ImageStack, Settings};
 pub use files::AppError;
 pub use folder::FolderRun;
+pub use movie::{MovieDoc, TrackJob, Tracking};
 pub use path_prompt::{PathPrompt, PathPurpose};
 pub use playback::{Preparing, PREPARE_IN_BACKGROUND};
 pub use run::{FrameRecord, RingView, Run};
@@ -62,6 +64,8 @@ pub struct Jobs {
     pub folder: Option<FolderRun>,
     /// A run being prepared (large images).
     pub preparing: Option<Preparing>,
+    /// A movie being tracked.
+    pub track: Option<TrackJob>,
 }
 
 /// What a view reads and where it sends its commands: the document only to read.
@@ -136,6 +140,14 @@ impl TopoApp {
 
     /// The window title.
     pub fn title(&self) -> String {
+        if let Some(m) = &self.doc.movie {
+            return format!(
+                "topocontour — {} — movie frame {} of {}",
+                self.doc.image_name,
+                m.frame,
+                m.movie.len()
+            );
+        }
         match &self.doc.run {
             Some(r) => format!(
                 "topocontour — {} — frame {}",
@@ -159,6 +171,10 @@ impl TopoApp {
         }
         self.poll_folder(&ctx);
         self.poll_preparing(&ctx);
+        if self.view.egui_ctx.is_none() {
+            self.view.egui_ctx = Some(ctx.clone());
+        }
+        self.poll_tracking();
         let mut cx = Ctx {
             doc: &self.doc,
             view: &mut self.view,

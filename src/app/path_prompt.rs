@@ -19,6 +19,10 @@ pub enum PathPurpose {
     OpenSession,
     /// A folder of images to segment.
     ApplyToFolder,
+    /// A movie to open (a TIFF or a folder).
+    OpenMovie,
+    /// A folder for the tracking result.
+    ExportCtc,
 }
 
 impl PathPurpose {
@@ -30,6 +34,8 @@ impl PathPurpose {
             PathPurpose::SaveSession => "Save session as",
             PathPurpose::OpenSession => "Open session",
             PathPurpose::ApplyToFolder => "Apply to folder",
+            PathPurpose::OpenMovie => "Open movie",
+            PathPurpose::ExportCtc => "Export tracks (CTC) to folder",
         }
     }
     /// The command the path completes.
@@ -40,6 +46,8 @@ impl PathPurpose {
             PathPurpose::SaveSession => Command::SaveSession(path),
             PathPurpose::OpenSession => Command::OpenSession(path),
             PathPurpose::ApplyToFolder => Command::ApplyToFolder(path),
+            PathPurpose::OpenMovie => Command::OpenMovie(path),
+            PathPurpose::ExportCtc => Command::ExportCtc(path),
         }
     }
 }

@@ -63,6 +63,15 @@ pub struct ViewState {
     pub(super) objects: objects::ObjectTable,
     /// The window title last sent.
     pub(super) title: String,
+    /// The track selected in the lineage view or the division log.
+    pub selected_track: Option<u32>,
+    /// While tracking, the movie slider follows the frame just tracked (until the user
+    /// moves it).
+    pub follow_tracking: bool,
+    /// Frames of the movie read so far.
+    pub(super) frames: super::movie::FrameCache,
+    /// The window's context, to wake it from background threads.
+    pub(super) egui_ctx: Option<egui::Context>,
 }
 
 /// The image on the GPU.

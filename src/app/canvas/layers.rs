@@ -226,3 +226,53 @@ pub(super) fn shapes_layer(cx: &Ctx, painter: &egui::Painter, view: View) {
         }
     }
 }
+
+/// The tracks of the movie frame on screen, each outline in its track's colour (the same
+/// in every frame) with its label; the daughters of a division in this frame ringed, the
+/// selected track under a white halo.
+pub(super) fn tracks_layer(cx: &Ctx, painter: &egui::Painter, view: View) {
+    let Some(frame) = cx.doc.movie.as_ref().and_then(|m| m.tracked_frame()) else {
+        return;
+    };
+    let font = egui::FontId::proportional(12.0);
+    for o in &frame.objects {
+        let mut pts: Vec<Pos2> = o.ring.iter().map(|&p| view.to_screen(p)).collect();
+        pts.push(pts[0]);
+        let colour = ring_color(o.track);
+        if cx.view.selected_track == Some(o.track) {
+            painter.add(egui::Shape::line(
+                pts.clone(),
+                Stroke::new(5.0, Color32::WHITE),
+            ));
+        }
+        painter.add(egui::Shape::line(pts, Stroke::new(2.0, colour)));
+        painter.text(
+            view.to_screen(o.centroid),
+            egui::Align2::CENTER_CENTER,
+            o.track.to_string(),
+            font.clone(),
+            colour,
+        );
+    }
+    let magenta = Stroke::new(2.5, Color32::from_rgb(255, 40, 200));
+    for d in &frame.divisions {
+        let at: Vec<Point> = frame
+            .objects
+            .iter()
+            .filter(|o| d.children.contains(&o.track))
+            .map(|o| o.centroid)
+            .collect();
+        if let [a, b] = at[..] {
+            let c = (a + b) * 0.5;
+            let r = (a.dist(b) * 0.5 + 18.0) as f32 * view.zoom;
+            painter.circle_stroke(view.to_screen(c), r, magenta);
+            painter.text(
+                view.to_screen(c) + Vec2::new(0.0, -r - 8.0),
+                egui::Align2::CENTER_BOTTOM,
+                d.describe(),
+                egui::FontId::proportional(13.0),
+                magenta.color,
+            );
+        }
+    }
+}

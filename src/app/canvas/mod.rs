@@ -7,7 +7,9 @@
 mod layers;
 mod tools;
 
-use layers::{compare_layer, contours_layer, image_layer, motion_layer, shapes_layer};
+use layers::{
+    compare_layer, contours_layer, image_layer, motion_layer, shapes_layer, tracks_layer,
+};
 use tools::tools_layer;
 
 use super::{fill, Ctx};
@@ -68,7 +70,7 @@ impl CanvasState {
 /// Above this many vertices regions are filled only while playback is paused.
 const FILL_WHILE_PLAYING_MAX_VERTICES: usize = 5000;
 
-fn ring_color(id: u32) -> Color32 {
+pub(in crate::app) fn ring_color(id: u32) -> Color32 {
     // Golden-angle hues: neighbouring ids get distant colours.
     let h = (id as f32 * 0.618_034) % 1.0;
     egui::ecolor::Hsva::new(h, 0.85, 0.95, 1.0).into()
@@ -139,6 +141,10 @@ pub(super) fn canvas_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
     image_layer(cx, ui, &painter, view, &image);
     if let Some(r) = right {
         compare_layer(cx, &full_painter, &painter, view, r);
+    }
+    if cx.doc.run.is_none() {
+        // A tracked movie frame shows its tracks until a run of its own starts.
+        tracks_layer(cx, &painter, view);
     }
     contours_layer(cx, &painter, view);
     motion_layer(cx, &painter, view);

@@ -2,6 +2,7 @@
 //! ([`side`]) and the status bar ([`status`]). Widgets read the document and send
 //! [`Command`]s; only view preferences (speed, fill, brush radius) are set in place.
 
+mod movie;
 mod side;
 mod status;
 
@@ -74,6 +75,34 @@ fn files_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
     })
     .response
     .on_hover_text("save or reopen the whole state of a segmentation; apply it to a folder");
+    ui.menu_button("Movie", |ui| {
+        menu_entry(
+            cx,
+            ui,
+            "Open movie (TIFF)…",
+            "a multi-page TIFF, one page per time point (8 or 16 bit)",
+            Command::OpenMovieDialog(false),
+        );
+        menu_entry(
+            cx,
+            ui,
+            "Open movie folder…",
+            "a folder of images, frames in name order",
+            Command::OpenMovieDialog(true),
+        );
+        ui.separator();
+        menu_entry(
+            cx,
+            ui,
+            "Export tracks (CTC)…",
+            "maskTTT.tif per frame and res_track.txt, the Cell Tracking Challenge result layout",
+            Command::ExportCtcDialog,
+        );
+    })
+    .response
+    .on_hover_text(
+        "track cells through a time-lapse: divisions are the contours' exact split events",
+    );
     ui.menu_button("Export", |ui| {
         for (label, kind, tip) in [
             ("SVG…", Format::Svg, "the contours as vector graphics"),
@@ -201,6 +230,7 @@ fn engine_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
     let modes = [
         ("Adaptive", Mode::Adaptive, "touching objects may merge into one, one may split in two, holes open and close: for a wrap around many objects, or when you do not know how many there are"),
         ("Preserve", Mode::Preserve, "each seed stays one object: touching objects stay apart (a thin gap between them), nothing splits or merges — for seeds placed on touching cells"),
+        ("Track", Mode::Track, "one object per seed, may divide: touching objects never merge and no hole opens, but an object that pinches in two splits (the engine tracking uses)"),
         ("Implicit", Mode::Implicit, "each seed stays one object, as Preserve, computed on a grid: touching objects share a boundary line with no gap"),
     ];
     if let Some(m) = choice_row(ui, p.mode, &modes) {

@@ -15,11 +15,19 @@ pub(in crate::app) fn side_panel(cx: &mut Ctx, ui: &mut egui::Ui) {
                 crate::app::objects::objects_ui(cx, ui);
                 egui::CollapsingHeader::new("Event log")
                     .default_open(true)
-                    .show(ui, |ui| event_log_ui(cx, ui))
+                    .show(ui, |ui| {
+                        super::movie::divisions_ui(cx, ui);
+                        event_log_ui(cx, ui);
+                    })
                     .header_response
                     .widget_info(|| {
                         egui::WidgetInfo::labeled(egui::Role::Button, true, "Event log")
                     });
+                if cx.doc.movie.is_some() {
+                    egui::CollapsingHeader::new("Lineage")
+                        .default_open(true)
+                        .show(ui, |ui| super::movie::lineage_ui(cx, ui));
+                }
                 egui::CollapsingHeader::new("Plots")
                     .default_open(true)
                     .show(ui, |ui| plots_ui(cx, ui));

@@ -7,6 +7,7 @@ use crate::app::{Command, Ctx};
 pub(in crate::app) fn bottom_bar(cx: &mut Ctx, ui: &mut egui::Ui) {
     egui::Panel::bottom("status").show(ui, |ui| {
         jobs_ui(cx, ui);
+        super::movie::movie_bar(cx, ui);
         if cx.doc.run.is_some() {
             let last = cx.doc.last_frame();
             let mut shown = cx.doc.shown.min(last);

@@ -1,0 +1,389 @@
+//! A movie in the app: its frames behind a slider of their own (apart from the
+//! evolution's timeline), tracking on a background thread ([`crate::track::Tracker`],
+//! one frame after another, each started from the contours of the frame before) with
+//! progress and Cancel, and the result: tracks drawn in one colour per track across
+//! frames, divisions in the event log, the lineage view, the Cell Tracking Challenge
+//! export. The window stays responsive while tracking: the thread sends each frame as it
+//! is done and wakes the window; nothing repaints once it ends.
+
+use super::{Command, Document, TopoApp};
+use crate::evolution::Field;
+use crate::io::export::ctc;
+use crate::io::movie::Movie;
+use crate::track::{carry::label_raster, Division, Lineage, TrackSettings, TrackedFrame, Tracker};
+use std::collections::HashMap;
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{channel, Receiver};
+use std::sync::Arc;
+
+/// The movie of a document: its frames, the one on screen, what tracking found.
+#[derive(Clone, Debug)]
+pub struct MovieDoc {
+    /// The movie (frames are read from it when shown).
+    pub movie: Movie,
+    /// The frame on screen (0-based).
+    pub frame: usize,
+    /// What tracking found so far (none before Track).
+    pub tracking: Option<Tracking>,
+}
+
+/// A tracking result: the frames tracked (from frame 0 on) and their lineage.
+#[derive(Clone, Debug, Default)]
+pub struct Tracking {
+    /// The tracked frames, in order (frame `t` at index `t`).
+    pub frames: Vec<Arc<TrackedFrame>>,
+    /// The tracks.
+    pub lineage: Lineage,
+    /// Every frame of the movie was tracked.
+    pub complete: bool,
+}
+
+impl Tracking {
+    /// Every division, in frame order.
+    pub fn divisions(&self) -> impl Iterator<Item = &Division> {
+        self.frames.iter().flat_map(|f| f.divisions.iter())
+    }
+}
+
+impl MovieDoc {
+    /// The tracked frame on screen, if tracking has reached it.
+    pub fn tracked_frame(&self) -> Option<&TrackedFrame> {
+        self.tracking.as_ref()?.frames.get(self.frame).map(|f| &**f)
+    }
+}
+
+/// Tracking running in the background.
+pub struct TrackJob {
+    /// Frames in the movie.
+    pub total: usize,
+    /// Frames tracked so far.
+    pub done: usize,
+    /// The movie it tracks (by name): its results go to a document showing this movie.
+    movie: String,
+    cancel: Arc<AtomicBool>,
+    rx: Receiver<Message>,
+    handle: Option<std::thread::JoinHandle<()>>,
+}
+
+/// What the tracking thread sends.
+enum Message {
+    /// One more frame: its result, the lineage so far, the image.
+    Frame(Arc<TrackedFrame>, Lineage, Arc<Field>),
+    /// A frame could not be read or tracked.
+    Failed(String),
+}
+
+/// Frames kept in memory for the slider, at most (about 0.5 GB of 512² frames): beyond,
+/// a frame is read again from the movie when shown.
+const CACHED_FRAMES: usize = 500;
+
+/// Frames of the movie on screen already read, by index (not part of the document).
+#[derive(Default)]
+pub struct FrameCache {
+    of: String,
+    frames: HashMap<usize, Arc<Field>>,
+}
+
+impl FrameCache {
+    fn get(&mut self, movie: &Movie, t: usize) -> Result<Arc<Field>, String> {
+        if self.of != movie.name() {
+            self.frames.clear();
+            self.of = movie.name().to_string();
+        }
+        if let Some(f) = self.frames.get(&t) {
+            return Ok(f.clone());
+        }
+        let f = movie
+            .frames()
+            .map_err(|e| e.to_string())?
+            .nth(t)
+            .ok_or_else(|| format!("{} has no frame {t}", movie.name()))?
+            .map_err(|e| e.to_string())?;
+        let f = Arc::new(f);
+        self.put(t, f.clone());
+        Ok(f)
+    }
+
+    fn put(&mut self, t: usize, f: Arc<Field>) {
+        if self.frames.len() >= CACHED_FRAMES {
+            self.frames.clear();
+        }
+        self.frames.insert(t, f);
+    }
+}
+
+impl TopoApp {
+    /// Movies and tracking.
+    pub(super) fn movie_command(&mut self, c: Command) {
+        match c {
+            Command::OpenMovie(p) => self.open_movie(&p),
+            Command::OpenMovieDialog(folder) => {
+                let d = self.dialog();
+                let chosen = if folder {
+                    d.pick_folder()
+                } else {
+                    d.add_filter("TIFF movies", &["tif", "tiff"]).pick_file()
+                };
+                match chosen {
+                    Some(p) => self.apply_now(Command::OpenMovie(p)),
+                    None => self.prompt_path(super::PathPurpose::OpenMovie, String::new()),
+                }
+            }
+            Command::SeekMovieFrame(t) => {
+                self.view.follow_tracking = false;
+                self.show_movie_frame(t);
+            }
+            Command::Track => self.start_tracking(),
+            Command::CancelTrack => {
+                if let Some(j) = &self.jobs.track {
+                    j.cancel.store(true, Ordering::SeqCst);
+                }
+            }
+            Command::SelectTrack(t) => self.view.selected_track = t,
+            Command::ExportCtc(dir) => match self.export_ctc(&dir) {
+                Ok(n) => {
+                    self.status.notice = Some(format!(
+                        "wrote {n} masks and res_track.txt to {}",
+                        dir.display()
+                    ))
+                }
+                Err(e) => self.status.error = Some(e),
+            },
+            Command::ExportCtcDialog => match self.dialog().pick_folder() {
+                Some(p) => self.apply_now(Command::ExportCtc(p)),
+                None => self.prompt_path(super::PathPurpose::ExportCtc, String::new()),
+            },
+            _ => unreachable!("not a movie command: {c:?}"),
+        }
+    }
+
+    /// Opens the movie at `path` as a new document on its first frame.
+    fn open_movie(&mut self, path: &Path) {
+        let movie = match Movie::open(path) {
+            Ok(m) => m,
+            Err(e) => {
+                self.status.error = Some(super::AppError::Movie(e.to_string()));
+                return;
+            }
+        };
+        let first = match self.view.frames.get(&movie, 0) {
+            Ok(f) => f,
+            Err(e) => {
+                self.status.error = Some(super::AppError::Movie(e));
+                return;
+            }
+        };
+        self.reset_run();
+        self.jobs.track = None;
+        let name = crate::io::folder::file_name(path);
+        let mut doc = Document::of_image((*first).clone(), name.clone());
+        doc.image = Some(first);
+        self.status.error = None;
+        self.status.notice = Some(format!(
+            "{name}: {} frames; draw seeds on frame 0 (or none: automatic seeds), then Track",
+            movie.len()
+        ));
+        doc.movie = Some(MovieDoc {
+            movie,
+            frame: 0,
+            tracking: None,
+        });
+        self.doc = doc;
+        self.view.prefs.last_dir = path.parent().map(Path::to_path_buf);
+        self.view.selected = None;
+        self.view.selected_contour = None;
+        self.view.selected_track = None;
+    }
+
+    /// Shows frame `t` of the movie: its image (the shapes stay, the run starts again).
+    fn show_movie_frame(&mut self, t: usize) {
+        let Some(m) = self.doc.movie.as_ref() else {
+            return;
+        };
+        let t = t.min(m.movie.len() - 1);
+        if t == m.frame && self.doc.image.is_some() {
+            return;
+        }
+        match self.view.frames.get(&m.movie, t) {
+            Ok(f) => self.put_movie_frame(t, f),
+            Err(e) => self.status.error = Some(super::AppError::Movie(e)),
+        }
+    }
+
+    fn put_movie_frame(&mut self, t: usize, f: Arc<Field>) {
+        self.reset_run();
+        if let Some(m) = self.doc.movie.as_mut() {
+            m.frame = t;
+        }
+        self.doc.image = Some(f);
+    }
+
+    /// Starts tracking the movie from frame 0 with the shapes on screen (none: automatic
+    /// seeds) and the run's parameters under the tracking engine.
+    fn start_tracking(&mut self) {
+        let Some(m) = &self.doc.movie else {
+            self.status.notice = Some("open a movie first (Movie ▸ Open movie…)".into());
+            return;
+        };
+        if self.jobs.track.is_some() {
+            self.status.notice = Some("tracking is already running".into());
+            return;
+        }
+        let movie = m.movie.clone();
+        let init = self.doc.shapes.clone();
+        let mut settings = TrackSettings::new(self.doc.params().clone());
+        settings.auto_seeds = init.is_empty();
+        let cancel = Arc::new(AtomicBool::new(false));
+        let (tx, rx) = channel();
+        let (stop, ctx) = (cancel.clone(), self.view.egui_ctx.clone());
+        let handle = std::thread::spawn(move || {
+            let wake = || {
+                if let Some(c) = &ctx {
+                    c.request_repaint();
+                }
+            };
+            let mut tracker = Tracker::new(settings, init);
+            let frames = match movie.frames() {
+                Ok(f) => f,
+                Err(e) => return drop(tx.send(Message::Failed(e.to_string()))),
+            };
+            for image in frames {
+                if stop.load(Ordering::SeqCst) {
+                    break;
+                }
+                let step = image
+                    .map_err(|e| e.to_string())
+                    .and_then(|img| Ok((tracker.step(&img).map_err(|e| e.to_string())?, img)));
+                let msg = match step {
+                    Ok((f, img)) => {
+                        Message::Frame(Arc::new(f), tracker.lineage().clone(), Arc::new(img))
+                    }
+                    Err(e) => Message::Failed(e),
+                };
+                let failed = matches!(msg, Message::Failed(_));
+                if tx.send(msg).is_err() || failed {
+                    break;
+                }
+                wake();
+            }
+            wake();
+        });
+        let total = m.movie.len();
+        self.jobs.track = Some(TrackJob {
+            total,
+            done: 0,
+            movie: m.movie.name().to_string(),
+            cancel,
+            rx,
+            handle: Some(handle),
+        });
+        if let Some(m) = self.doc.movie.as_mut() {
+            m.tracking = Some(Tracking::default());
+        }
+        self.view.follow_tracking = true;
+        self.status.notice = Some(format!("tracking {total} frames…"));
+    }
+
+    /// Takes the frames the tracking thread sent; ends the job when the thread ended.
+    pub(super) fn poll_tracking(&mut self) {
+        let Some(job) = self.jobs.track.as_mut() else {
+            return;
+        };
+        // Looked at before draining: once the thread has ended, the drain gets all it sent.
+        let finished = job.handle.as_ref().is_none_or(|h| h.is_finished());
+        let (mut newest, mut failure) = (None, None);
+        while let Ok(msg) = job.rx.try_recv() {
+            match msg {
+                Message::Frame(f, lineage, image) => {
+                    job.done += 1;
+                    let t = f.frame;
+                    self.view.frames.put(t, image.clone());
+                    let same = self
+                        .doc
+                        .movie
+                        .as_mut()
+                        .filter(|m| m.movie.name() == job.movie);
+                    if let Some(tr) = same.and_then(|m| m.tracking.as_mut()) {
+                        tr.frames.truncate(t);
+                        tr.frames.push(f);
+                        tr.lineage = lineage;
+                    }
+                    newest = Some((t, image));
+                }
+                Message::Failed(e) => failure = Some(e),
+            }
+        }
+        let (done, total) = (job.done, job.total);
+        if finished {
+            if let Some(h) = job.handle.take() {
+                let _ = h.join();
+            }
+            self.jobs.track = None;
+            if let Some(tr) = self.doc.movie.as_mut().and_then(|m| m.tracking.as_mut()) {
+                tr.complete = done == total;
+            }
+            self.status.notice = Some(self.tracking_summary(done, total));
+        }
+        if let Some(e) = failure {
+            self.status.error = Some(super::AppError::Movie(e));
+        }
+        if let Some((t, image)) = newest.filter(|_| self.view.follow_tracking) {
+            if self.doc.movie.is_some() {
+                self.put_movie_frame(t, image);
+            }
+        }
+    }
+
+    fn tracking_summary(&self, done: usize, total: usize) -> String {
+        let Some(tr) = self.doc.movie.as_ref().and_then(|m| m.tracking.as_ref()) else {
+            return format!("tracked {done} of {total} frames");
+        };
+        let divisions = tr.divisions().count();
+        let stopped = if done < total { " (stopped)" } else { "" };
+        format!(
+            "tracked {done} of {total} frames{stopped}: {} tracks, {divisions} divisions",
+            tr.lineage.tracks().len()
+        )
+    }
+
+    /// Writes `DIR/maskTTT.tif` per tracked frame and `DIR/res_track.txt`; the number of
+    /// masks.
+    fn export_ctc(&self, dir: &Path) -> Result<usize, super::AppError> {
+        let tr = self
+            .doc
+            .movie
+            .as_ref()
+            .and_then(|m| m.tracking.as_ref().map(|t| (m, t)))
+            .filter(|(_, t)| !t.frames.is_empty());
+        let Some((m, tr)) = tr else {
+            return Err(super::AppError::Movie(
+                "nothing to export yet: Track first".into(),
+            ));
+        };
+        if dir.exists() && !dir.is_dir() {
+            return Err(super::AppError::Movie(format!(
+                "{}: not a folder (the result is a folder of masks)",
+                dir.display()
+            )));
+        }
+        let io = |source| super::AppError::Io {
+            path: dir.to_path_buf(),
+            source,
+        };
+        std::fs::create_dir_all(dir).map_err(io)?;
+        let (w, h) = m.movie.size();
+        for f in &tr.frames {
+            let rings: Vec<(u32, &[crate::geometry::Point])> = f
+                .objects
+                .iter()
+                .map(|o| (o.track, o.ring.as_slice()))
+                .collect();
+            let bytes = ctc::label_image(&label_raster(&rings, w, h), w, h, true)
+                .ok_or_else(|| super::AppError::Movie("more than 65,535 tracks".into()))?;
+            crate::io::write_atomic(&dir.join(ctc::mask_name(f.frame, m.movie.len())), &bytes)?;
+        }
+        crate::io::write_atomic(&dir.join("res_track.txt"), tr.lineage.ctc_text().as_bytes())?;
+        Ok(tr.frames.len())
+    }
+}

@@ -1,0 +1,212 @@
+//! The movie's widgets: the frame slider (apart from the evolution's timeline), Track
+//! with its progress and Cancel, the divisions in the event log, and the lineage view
+//! (one row per track over the frames, a division a fork from the parent's row to its
+//! children's), linked to the canvas: a click selects the track and shows that frame.
+
+use crate::app::{Command, Ctx};
+use crate::track::Track;
+use egui::{Color32, Pos2, Rect, Sense, Stroke, Vec2};
+
+/// The movie's row in the status bar: frame slider, Track or Cancel with progress, export.
+pub(in crate::app) fn movie_bar(cx: &mut Ctx, ui: &mut egui::Ui) {
+    let Some(m) = &cx.doc.movie else { return };
+    let (frames, shown) = (m.movie.len(), m.frame);
+    ui.horizontal(|ui| {
+        ui.label("Movie");
+        let mut t = shown;
+        let w = ui.available_width() - 420.0;
+        ui.spacing_mut().slider_width = w.max(120.0);
+        if ui
+            .add(egui::Slider::new(&mut t, 0..=frames - 1).text("movie frame"))
+            .on_hover_text("the frame of the movie on screen (the evolution's timeline is below)")
+            .changed()
+        {
+            cx.send(Command::SeekMovieFrame(t));
+        }
+        match &cx.jobs.track {
+            Some(job) => {
+                ui.add(
+                    egui::ProgressBar::new(job.done as f32 / job.total.max(1) as f32)
+                        .desired_width(140.0)
+                        .text(format!("{} / {} frames", job.done, job.total)),
+                );
+                if ui
+                    .button("Cancel tracking")
+                    .on_hover_text("stop after the frame in progress (the frames tracked are kept)")
+                    .clicked()
+                {
+                    cx.send(Command::CancelTrack);
+                }
+            }
+            None => {
+                let tip = "track every frame from frame 0 in the background: each frame starts from the contours of the frame before; touching cells never merge, a cell that pinches in two divides (seeds drawn on frame 0, or automatic seeds)";
+                if ui.button("Track movie").on_hover_text(tip).clicked() {
+                    cx.send(Command::Track);
+                }
+            }
+        }
+        let tracked = m.tracking.as_ref().is_some_and(|t| !t.frames.is_empty());
+        if ui
+            .add_enabled(tracked, egui::Button::new("Export CTC…"))
+            .on_hover_text("write maskTTT.tif (16-bit track labels) per frame and res_track.txt (L B E P) to a folder: the Cell Tracking Challenge result layout")
+            .clicked()
+        {
+            cx.send(Command::ExportCtcDialog);
+        }
+    });
+}
+
+/// The divisions found by tracking, each a line of the event log; a click shows the
+/// frame the daughters start in and selects the parent.
+pub(in crate::app) fn divisions_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
+    let Some(tr) = cx.doc.movie.as_ref().and_then(|m| m.tracking.as_ref()) else {
+        return;
+    };
+    let shown = cx.doc.movie.as_ref().map_or(0, |m| m.frame);
+    let mut chosen = None;
+    ui.label(format!("Divisions ({})", tr.divisions().count()));
+    egui::ScrollArea::vertical()
+        .id_salt("divisions")
+        .max_height(160.0)
+        .show(ui, |ui| {
+            for d in tr.divisions() {
+                let selected = shown == d.frame && cx.view.selected_track == Some(d.parent);
+                if ui.selectable_label(selected, d.describe()).clicked() {
+                    chosen = Some(*d);
+                }
+            }
+        });
+    if let Some(d) = chosen {
+        cx.send(Command::SeekMovieFrame(d.frame));
+        cx.send(Command::SelectTrack(Some(d.parent)));
+    }
+}
+
+/// The rows of the lineage view: tracks in depth-first order from each root (by label),
+/// so daughters sit beside their parent.
+fn rows(tracks: &[Track]) -> Vec<usize> {
+    let mut children: Vec<Vec<usize>> = vec![Vec::new(); tracks.len() + 1];
+    let mut roots = Vec::new();
+    for (i, t) in tracks.iter().enumerate() {
+        match t.parent {
+            0 => roots.push(i),
+            p => children[p as usize].push(i),
+        }
+    }
+    let mut order = Vec::with_capacity(tracks.len());
+    let mut stack: Vec<usize> = roots.into_iter().rev().collect();
+    while let Some(i) = stack.pop() {
+        order.push(i);
+        stack.extend(children[tracks[i].label as usize].iter().rev());
+    }
+    order
+}
+
+/// The lineage view: x is the frame, one row per track in its colour; a fork joins a
+/// parent to its daughters; the frame on screen is a vertical line. A click selects the
+/// track under the pointer and shows that frame.
+pub(in crate::app) fn lineage_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
+    let Some(m) = &cx.doc.movie else { return };
+    let Some(tr) = m
+        .tracking
+        .as_ref()
+        .filter(|t| !t.lineage.tracks().is_empty())
+    else {
+        ui.label("Track the movie to see its lineage.");
+        return;
+    };
+    let tracks = tr.lineage.tracks();
+    let order = rows(tracks);
+    let row_h = (260.0 / order.len() as f32).clamp(2.0, 10.0);
+    let size = Vec2::new(ui.available_width(), row_h * order.len() as f32 + 16.0);
+    let (response, painter) = ui.allocate_painter(size, Sense::click());
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Canvas, true, "Lineage view"));
+    let rect = response.rect.shrink2(Vec2::new(4.0, 8.0));
+    let frames = m.movie.len().max(2) - 1;
+    let layout = Layout {
+        rect,
+        frames,
+        row_h,
+    };
+    let mut row_of = vec![0usize; tracks.len()];
+    for (r, &i) in order.iter().enumerate() {
+        row_of[i] = r;
+    }
+    painter.rect_filled(response.rect, 2.0, Color32::from_gray(24));
+    draw_tracks(&painter, &layout, tracks, &row_of, cx.view.selected_track);
+    let now = layout.x(m.frame);
+    painter.line_segment(
+        [Pos2::new(now, rect.min.y), Pos2::new(now, rect.max.y)],
+        Stroke::new(1.0, Color32::from_gray(200)),
+    );
+    if let Some(p) = response
+        .interact_pointer_pos()
+        .filter(|_| response.clicked())
+    {
+        let (track, frame) = layout.hit(p, tracks, &order);
+        cx.send(Command::SelectTrack(track));
+        cx.send(Command::SeekMovieFrame(frame));
+    }
+}
+
+/// Where frames and rows of the lineage view are on screen.
+struct Layout {
+    rect: Rect,
+    frames: usize,
+    row_h: f32,
+}
+
+impl Layout {
+    fn x(&self, frame: usize) -> f32 {
+        self.rect.min.x + self.rect.width() * frame as f32 / self.frames as f32
+    }
+    fn y(&self, row: usize) -> f32 {
+        self.rect.min.y + self.row_h * (row as f32 + 0.5)
+    }
+    /// The track whose row is under `p` (if it lives at that frame) and the frame.
+    fn hit(&self, p: Pos2, tracks: &[Track], order: &[usize]) -> (Option<u32>, usize) {
+        let f = ((p.x - self.rect.min.x) / self.rect.width() * self.frames as f32).round();
+        let frame = (f.max(0.0) as usize).min(self.frames);
+        let row = ((p.y - self.rect.min.y) / self.row_h).floor();
+        let track = order
+            .get(row.max(0.0) as usize)
+            .map(|&i| tracks[i])
+            .filter(|t| (t.first..=t.last).contains(&frame))
+            .map(|t| t.label);
+        (track, frame)
+    }
+}
+
+fn draw_tracks(
+    painter: &egui::Painter,
+    l: &Layout,
+    tracks: &[Track],
+    row_of: &[usize],
+    selected: Option<u32>,
+) {
+    let width = (l.row_h * 0.6).clamp(1.5, 4.0);
+    for (i, t) in tracks.iter().enumerate() {
+        let y = l.y(row_of[i]);
+        let colour = crate::app::canvas::ring_color(t.label);
+        let (x0, x1) = (l.x(t.first), l.x(t.last).max(l.x(t.first) + 2.0));
+        if selected == Some(t.label) {
+            painter.line_segment(
+                [Pos2::new(x0, y), Pos2::new(x1, y)],
+                Stroke::new(width + 3.0, Color32::WHITE),
+            );
+        }
+        painter.line_segment(
+            [Pos2::new(x0, y), Pos2::new(x1, y)],
+            Stroke::new(width, colour),
+        );
+        if t.parent != 0 {
+            // The fork: from the parent's end down (or up) to this daughter's start.
+            let p = t.parent as usize - 1;
+            let (px, py) = (l.x(tracks[p].last), l.y(row_of[p]));
+            painter.line_segment(
+                [Pos2::new(px, py), Pos2::new(x0, y)],
+                Stroke::new(1.0, Color32::from_gray(190)),
+            );
+        }
+    }
+}

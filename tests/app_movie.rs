@@ -1,0 +1,252 @@
+//! Movies in the app, driven headless with egui_kittest (issue 26): the movie's frame
+//! slider, Track in the background with its progress and Cancel, the division in the
+//! event log and the jump to its frame, the lineage view linked to the canvas, the CTC
+//! export. The movies are made here: bright capsules on a dark background, written as a
+//! folder of PNG frames.
+#![cfg(feature = "gui")]
+
+mod app_kit;
+
+use app_kit::*;
+use egui_kittest::kittest::Queryable;
+use egui_kittest::Harness;
+use topocontour::app::{Command, TopoApp};
+use topocontour::evolution::Polarity;
+use topocontour::geometry::Point;
+
+type Capsule = (Point, Point, f64);
+
+/// A `w`×`h` 8-bit frame with bright capsules (segments thickened by a radius).
+fn frame(w: u32, h: u32, capsules: &[Capsule]) -> image::GrayImage {
+    image::GrayImage::from_fn(w, h, |x, y| {
+        let p = Point::new(x as f64 + 0.5, y as f64 + 0.5);
+        let inside = capsules.iter().any(|&(a, b, r)| {
+            let d = b - a;
+            let t = if d.norm2() > 0.0 {
+                ((p - a).dot(d) / d.norm2()).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            p.dist(a + d * t) <= r
+        });
+        image::Luma([if inside { 217 } else { 38 }])
+    })
+}
+
+/// Writes `frames` as `DIR/fNNN.png`; the folder.
+fn movie_folder(name: &str, frames: &[image::GrayImage]) -> std::path::PathBuf {
+    let dir = temp(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    for (t, f) in frames.iter().enumerate() {
+        f.save(dir.join(format!("f{t:03}.png"))).unwrap();
+    }
+    dir
+}
+
+/// A rod that grows for four frames, then two rods drifting apart for four (the rod of
+/// tests/track.rs): track 1 divides into 2 and 3 at frame 4.
+fn dividing_rod() -> Vec<image::GrayImage> {
+    let rod = |a: f64, b: f64| (Point::new(a, 32.0), Point::new(b, 32.0), 6.0);
+    let mut frames: Vec<_> = [10.0, 12.0, 14.0, 16.0]
+        .map(|h| frame(96, 64, &[rod(48.0 - h, 48.0 + h)]))
+        .into();
+    for gap in [3.0, 4.0, 5.0, 6.0] {
+        let cells = [rod(24.0, 42.0 - gap), rod(54.0 + gap, 72.0)];
+        frames.push(frame(96, 64, &cells));
+    }
+    frames
+}
+
+/// The app on the movie in `dir`, bright objects, drawn once.
+fn movie_app(dir: &std::path::Path) -> Harness<'static, TopoApp> {
+    let mut app = TopoApp::default();
+    app.send(Command::OpenMovie(dir.to_path_buf()));
+    app.send(Command::SetPolarity(Polarity::Bright));
+    let mut h = harness(app);
+    h.step();
+    assert_no_error(&h);
+    h
+}
+
+/// Draws frames until tracking has ended (at most a minute).
+fn wait_for_tracking(h: &mut Harness<'_, TopoApp>) {
+    let start = std::time::Instant::now();
+    while h.state().jobs.track.is_some() {
+        assert!(start.elapsed().as_secs() < 60, "tracking did not end");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.step();
+    }
+    h.step();
+}
+
+fn movie_frame(h: &Harness<'_, TopoApp>) -> usize {
+    h.state().doc.movie.as_ref().expect("a movie").frame
+}
+
+#[test]
+fn the_movie_slider_shows_frames_and_track_runs_with_cancel() {
+    // 150 frames of two cells drifting right: long enough to cancel midway.
+    let frames: Vec<_> = (0..150)
+        .map(|t| {
+            let x = 30.0 + 0.2 * t as f64;
+            let cells = [
+                (Point::new(x, 40.0), Point::new(x + 10.0, 40.0), 9.0),
+                (Point::new(x + 40.0, 80.0), Point::new(x + 40.0, 90.0), 9.0),
+            ];
+            frame(160, 128, &cells)
+        })
+        .collect();
+    let dir = movie_folder("slider", &frames);
+    let mut h = movie_app(&dir);
+    assert_eq!(h.state().doc.movie.as_ref().unwrap().movie.len(), 150);
+    let first = h.state().doc.image.clone().unwrap();
+    h.get_by_role_and_label(egui::accesskit::Role::Slider, "movie frame")
+        .set_value_accesskit(120.0);
+    h.step();
+    h.step();
+    assert_eq!(movie_frame(&h), 120);
+    let shown = h.state().doc.image.clone().unwrap();
+    assert_ne!(
+        first.data, shown.data,
+        "the slider shows another frame's image"
+    );
+    assert!(h.state().title().contains("movie frame 120"));
+    click_label(&mut h, "Track movie");
+    let start = std::time::Instant::now();
+    while h.state().jobs.track.as_ref().is_some_and(|j| j.done < 3) {
+        assert!(start.elapsed().as_secs() < 60);
+        std::thread::sleep(std::time::Duration::from_millis(2));
+        h.step();
+    }
+    // The window stays responsive: a frame draws while the thread tracks.
+    let t = std::time::Instant::now();
+    h.step();
+    assert!(t.elapsed().as_millis() < 500, "{:?}", t.elapsed());
+    click_label(&mut h, "Cancel tracking");
+    wait_for_tracking(&mut h);
+    let tr = h
+        .state()
+        .doc
+        .movie
+        .as_ref()
+        .unwrap()
+        .tracking
+        .clone()
+        .unwrap();
+    assert!(!tr.complete);
+    let n = tr.frames.len();
+    assert!((3..150).contains(&n), "cancelled midway: {n} frames");
+    assert!(notice(&h).contains("(stopped)"), "{}", notice(&h));
+    // Each track keeps its label (its colour) across the frames tracked.
+    for f in &tr.frames {
+        let tracks: Vec<u32> = f.objects.iter().map(|o| o.track).collect();
+        assert_eq!(tracks, [1, 2], "frame {}", f.frame);
+    }
+    // Nothing repaints once tracking has ended.
+    for _ in 0..5 {
+        h.step();
+    }
+    assert!(!h.ctx.has_requested_repaint());
+}
+
+#[test]
+fn a_division_is_listed_in_the_event_log_and_a_click_shows_its_frame() {
+    let dir = movie_folder("division", &dividing_rod());
+    let mut h = movie_app(&dir);
+    click_label(&mut h, "Track movie");
+    wait_for_tracking(&mut h);
+    let tr = h
+        .state()
+        .doc
+        .movie
+        .as_ref()
+        .unwrap()
+        .tracking
+        .clone()
+        .unwrap();
+    assert!(tr.complete);
+    assert_eq!(tr.lineage.ctc_text(), "1 0 3 0\n2 4 7 1\n3 4 7 1\n");
+    h.state_mut().send(Command::SeekMovieFrame(0));
+    h.step();
+    assert_eq!(movie_frame(&h), 0);
+    click_label(&mut h, "cell 1 divided into 2 and 3 at frame 4");
+    assert_eq!(movie_frame(&h), 4);
+    assert_eq!(h.state().view.selected_track, Some(1));
+    let tracked = h
+        .state()
+        .doc
+        .movie
+        .as_ref()
+        .unwrap()
+        .tracked_frame()
+        .unwrap();
+    assert_eq!(
+        tracked.divisions.len(),
+        1,
+        "the frame shown is the division's"
+    );
+}
+
+#[test]
+fn the_lineage_view_selects_a_track_and_shows_its_frame() {
+    let dir = movie_folder("lineage", &dividing_rod());
+    let mut h = movie_app(&dir);
+    click_label(&mut h, "Track movie");
+    wait_for_tracking(&mut h);
+    // Rows in depth-first order: track 1, then its daughters 2 and 3, 10 px each, in a
+    // view inset 4 px across and 8 px down; x runs over frames 0 to 7.
+    let r = h.get_by_label("Lineage view").rect();
+    let at = |frame: f32, row: f32| {
+        egui::pos2(
+            r.min.x + 4.0 + (r.width() - 8.0) * frame / 7.0,
+            r.min.y + 8.0 + 10.0 * (row + 0.5),
+        )
+    };
+    click_at(&mut h, at(6.0, 2.0));
+    assert_eq!(h.state().view.selected_track, Some(3));
+    assert_eq!(movie_frame(&h), 6);
+    click_at(&mut h, at(1.0, 0.0));
+    assert_eq!(h.state().view.selected_track, Some(1));
+    assert_eq!(movie_frame(&h), 1);
+}
+
+#[test]
+fn the_tracking_result_exports_in_the_ctc_layout() {
+    let dir = movie_folder("ctc", &dividing_rod());
+    let mut h = movie_app(&dir);
+    let out = temp("ctc-out");
+    let _ = std::fs::remove_dir_all(&out);
+    h.state_mut().send(Command::ExportCtc(out.clone()));
+    h.step();
+    assert!(h.state().status.error.is_some(), "nothing tracked yet");
+    h.state_mut().status.error = None;
+    click_label(&mut h, "Track movie");
+    wait_for_tracking(&mut h);
+    h.state_mut().send(Command::ExportCtc(out.clone()));
+    h.step();
+    assert_no_error(&h);
+    let res = std::fs::read_to_string(out.join("res_track.txt")).unwrap();
+    assert_eq!(res, "1 0 3 0\n2 4 7 1\n3 4 7 1\n");
+    let mask = image::open(out.join("mask005.tif")).unwrap().into_luma16();
+    let mut labels: Vec<u16> = mask.pixels().map(|p| p.0[0]).collect();
+    labels.sort_unstable();
+    labels.dedup();
+    assert_eq!(labels, [0, 2, 3], "frame 5 holds the two daughters");
+    assert!(out.join("mask007.tif").exists());
+}
+
+#[test]
+fn a_bad_movie_is_refused_with_one_line() {
+    let dir = movie_folder("short", &dividing_rod()[..1]);
+    let mut app = TopoApp::default();
+    app.send(Command::OpenMovie(dir));
+    let mut h = harness(app);
+    h.step();
+    let e = h.state().status.error.as_ref().map(|e| e.to_string());
+    assert!(
+        e.as_deref().is_some_and(|e| e.contains("at least two")),
+        "{e:?}"
+    );
+    assert!(h.state().doc.movie.is_none());
+}
