@@ -158,6 +158,15 @@ pub enum Command {
     SeekMovieFrame(usize),
     /// Track the movie from frame 0 in the background.
     Track,
+    /// Track from frame 0 even though it replaces the corrections made by hand.
+    TrackConfirmed,
+    /// Track on from the last frame tracked.
+    ContinueTrack,
+    /// Put the correction of tracked frame `n` into the tracking and track the frames
+    /// after it again, even though that replaces later corrections.
+    Retrack(usize),
+    /// Close the question on screen.
+    CloseQuestion,
     /// Stop tracking after the frame in progress (the frames tracked are kept).
     CancelTrack,
     /// Select a track (its outline is highlighted, its row in the lineage view).
@@ -274,8 +283,9 @@ impl Command {
             OpenImage(..) | OpenDialog | Export(..) | ExportDialog(..) | SessionDialog(..)
             | SaveSession(..) | OpenSession(..) | ApplyToFolder(..) | ApplyToFolderDialog
             | CancelFolder => Group::Files,
-            OpenMovie(..) | OpenMovieDialog(..) | SeekMovieFrame(..) | Track | CancelTrack
-            | SelectTrack(..) | ExportCtc(..) | ExportCtcDialog => Group::Movie,
+            OpenMovie(..) | OpenMovieDialog(..) | SeekMovieFrame(..) | Track | TrackConfirmed
+            | ContinueTrack | Retrack(..) | CloseQuestion | CancelTrack | SelectTrack(..)
+            | ExportCtc(..) | ExportCtcDialog => Group::Movie,
             Paint { .. }
             | SetTrainLabel(..)
             | ShowProbabilities(..)
@@ -328,6 +338,10 @@ impl Command {
             | OpenMovieDialog(_)
             | SeekMovieFrame(_)
             | Track
+            | TrackConfirmed
+            | ContinueTrack
+            | Retrack(_)
+            | CloseQuestion
             | CancelTrack
             | SelectTrack(_)
             | ExportCtc(_)

@@ -7,6 +7,7 @@
 mod apply;
 mod canvas;
 mod command;
+mod correct;
 mod document;
 mod files;
 mod fill;
@@ -34,7 +35,7 @@ pub use path_prompt::{PathPrompt, PathPurpose};
 pub use playback::{Preparing, PREPARE_IN_BACKGROUND};
 pub use run::{FrameRecord, RingView, Run};
 pub use train::{Map, Trainer, Training};
-pub use view::{Prefs, Status, ViewState, BRUSH_RADIUS};
+pub use view::{Prefs, Question, Status, ViewState, BRUSH_RADIUS};
 
 use crate::evolution::Field;
 use crate::geometry::Point;
@@ -181,6 +182,7 @@ impl TopoApp {
         }
         self.poll_tracking();
         self.poll_map();
+        self.begin_correction();
         let mut cx = Ctx {
             doc: &self.doc,
             view: &mut self.view,
@@ -192,6 +194,7 @@ impl TopoApp {
         keys::keyboard(&mut cx, ui);
         keys::help_ui(&mut cx, &ctx);
         path_prompt::path_prompt_ui(&mut cx, &ctx);
+        panels::question_ui(&mut cx, &ctx);
         panels::top_bar(&mut cx, ui);
         panels::bottom_bar(&mut cx, ui);
         panels::side_panel(&mut cx, ui);
@@ -199,6 +202,7 @@ impl TopoApp {
         egui::CentralPanel::default().show(ui, |ui| canvas::canvas_ui(&mut cx, ui));
         self.status.draw_ms = t.elapsed().as_secs_f64() * 1e3;
         self.apply();
+        self.poll_correction(ctx.input(|i| i.pointer.any_down()));
         self.request_map();
         self.tick(dt);
         if self.view.playing {

@@ -27,6 +27,9 @@ impl TopoApp {
         self.jobs.preparing = None;
         self.doc.drop_runs();
         self.view.playing = false;
+        if let Some(m) = self.doc.movie.as_mut() {
+            m.correcting = None;
+        }
     }
 
     /// Starts a run from the current shapes if there is none; false while it is being
@@ -183,6 +186,18 @@ impl TopoApp {
 
     /// Playing, stepping and seeking.
     pub(super) fn playback(&mut self, c: Command) {
+        let correcting = self
+            .doc
+            .movie
+            .as_ref()
+            .is_some_and(|m| m.correcting.is_some());
+        if correcting && matches!(c, Command::Play | Command::Step(_) | Command::StepToEvent) {
+            self.status.notice = Some(
+                "this tracked frame's contours are open for correction (Edit, Brush); Track again re-runs the evolution"
+                    .into(),
+            );
+            return;
+        }
         match c {
             Command::Play => {
                 if self.ensure_run() {

@@ -74,6 +74,8 @@ pub struct ViewState {
     /// While tracking, the movie slider follows the frame just tracked (until the user
     /// moves it).
     pub follow_tracking: bool,
+    /// A question the user must answer before work of theirs is replaced.
+    pub question: Option<Question>,
     /// Frames of the movie read so far.
     pub(super) frames: super::movie::FrameCache,
     /// The window's context, to wake it from background threads.
@@ -85,6 +87,22 @@ pub(super) struct Texture {
     pub handle: egui::TextureHandle,
     /// The image it was made from (by address) and the contrast window.
     pub of: (usize, (f32, f32)),
+}
+
+/// A question asked before work of the user's is replaced (nothing is lost without
+/// asking).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Question {
+    /// The correction of frame `frame` tracks the frames after it again, which replaces
+    /// the corrections on frames `later`.
+    Retrack {
+        /// The frame corrected.
+        frame: usize,
+        /// Later frames the user corrected.
+        later: Vec<usize>,
+    },
+    /// Tracking again from frame 0 replaces the corrections on these frames.
+    TrackAgain(Vec<usize>),
 }
 
 /// What the status bar says.

@@ -7,6 +7,7 @@ mod side;
 mod status;
 mod train;
 
+pub(super) use movie::question_ui;
 pub(super) use side::side_panel;
 pub(super) use status::bottom_bar;
 
