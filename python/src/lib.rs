@@ -6,7 +6,9 @@
 //! for every run (`Python::detach`), so threads segment images side by side.
 
 mod arrays;
+mod learn;
 mod run;
+mod track;
 
 use pyo3::prelude::*;
 
@@ -16,7 +18,12 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::segment_path, m)?)?;
     m.add_function(wrap_pyfunction!(run::segment_flags, m)?)?;
     m.add_function(wrap_pyfunction!(arrays::load, m)?)?;
+    m.add_function(wrap_pyfunction!(learn::train, m)?)?;
+    m.add_function(wrap_pyfunction!(track::track, m)?)?;
+    m.add_function(wrap_pyfunction!(track::track_flags, m)?)?;
     m.add_class::<run::Segmentation>()?;
+    m.add_class::<learn::PyClassifier>()?;
+    m.add_class::<track::Tracks>()?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

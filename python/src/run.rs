@@ -3,20 +3,24 @@
 //! finished run ([`Segmentation`]) read back as the CLI's exports.
 
 use crate::arrays::{image_samples, raster};
+use crate::learn::{PyClassifier, StrokesIn};
 use clap::{CommandFactory, Parser};
 use numpy::PyArray2;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use topocontour::cli::{
     classifier_for, job_for, run_loaded, teach_for, usage_line, Failure, RunSettings,
 };
 use topocontour::contours::ContourId;
 use topocontour::evolution::Evolver;
+use topocontour::evolution::Field;
 use topocontour::io::folder::file_name;
 use topocontour::io::{field_from_samples, ImageInfo, Outputs, PixelSize};
 use topocontour::job::JobRun;
+use topocontour::learn::{Classifier, Teach};
 
 /// The flags `segment` and `batch` share, parsed as the command line parses them.
 #[derive(Parser)]
@@ -27,7 +31,7 @@ struct Flags {
 }
 
 /// A failure as the Python exception it is: bad input (the CLI's exit 2) a ValueError.
-fn raise(f: Failure) -> PyErr {
+pub(crate) fn raise(f: Failure) -> PyErr {
     if f.code == 2 {
         PyValueError::new_err(f.message)
     } else {
@@ -35,7 +39,7 @@ fn raise(f: Failure) -> PyErr {
     }
 }
 
-fn bad(message: impl std::fmt::Display) -> PyErr {
+pub(crate) fn bad(message: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(message.to_string())
 }
 
@@ -48,16 +52,70 @@ fn settings(argv: Vec<String>) -> PyResult<RunSettings> {
         .map_err(|e| bad(usage_line(&e)))
 }
 
+/// What teaches a run in memory (`classifier=` a [`PyClassifier`], `strokes=` an
+/// array): it replaces the `--classifier` / `--train` placeholders the flags then hold
+/// (kept there only so clap refuses the two together with its own line).
+pub enum TeachIn {
+    Classifier(Arc<Classifier>),
+    Strokes(StrokesIn),
+}
+
+impl TeachIn {
+    fn of(teach: Option<&Bound<'_, PyAny>>) -> PyResult<Option<TeachIn>> {
+        let Some(t) = teach else { return Ok(None) };
+        if let Ok(c) = t.cast::<PyClassifier>() {
+            return Ok(Some(TeachIn::Classifier(c.get().inner.clone())));
+        }
+        Ok(Some(TeachIn::Strokes(StrokesIn::of(t)?)))
+    }
+
+    fn teach(self, image: &Field) -> PyResult<Teach> {
+        Ok(match self {
+            TeachIn::Classifier(c) => Teach::Classifier(c),
+            TeachIn::Strokes(s) => Teach::strokes(s.read(image.width, image.height).map_err(bad)?),
+        })
+    }
+}
+
+/// The settings, with any in-memory teacher standing in for its flag.
+fn settings_with(
+    argv: Vec<String>,
+    teach: Option<&Bound<'_, PyAny>>,
+) -> PyResult<(RunSettings, Option<TeachIn>)> {
+    let mut run = settings(argv)?;
+    let teach = TeachIn::of(teach)?;
+    if teach.is_some() {
+        run.train = None;
+        run.classifier = None;
+    }
+    Ok((run, teach))
+}
+
+/// The teacher of a run on `image`: the one in memory, else the flags'.
+fn teacher(
+    run: &RunSettings,
+    given: Option<TeachIn>,
+    flagged: Option<&Teach>,
+    image: &Field,
+) -> PyResult<Option<Teach>> {
+    match given {
+        Some(t) => t.teach(image).map(Some),
+        None => teach_for(run, flagged, image).map_err(raise),
+    }
+}
+
 /// Runs the settings on an image array; `name` stands for its file (the JSON's `image`,
-/// messages).
+/// messages); `teach` is a classifier or strokes array given in memory.
 #[pyfunction]
+#[pyo3(signature = (image, argv, name, teach = None))]
 pub fn segment_array(
     py: Python<'_>,
     image: &Bound<'_, PyAny>,
     argv: Vec<String>,
     name: String,
+    teach: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Segmentation> {
-    let run = settings(argv)?;
+    let (run, given) = settings_with(argv, teach)?;
     if run.page.is_some() {
         return Err(bad("page applies to a file; an array is one page"));
     }
@@ -65,9 +123,9 @@ pub fn segment_array(
     py.detach(move || {
         let field = field_from_samples(&name, width, height, owned.samples()).map_err(bad)?;
         drop(owned);
-        let teach = classifier_for(&run).map_err(raise)?;
+        let flagged = classifier_for(&run).map_err(raise)?;
         let mut job = job_for(Path::new(&name), &run).map_err(raise)?;
-        job.teach = teach_for(&run, teach.as_ref(), &field).map_err(raise)?;
+        job.teach = teacher(&run, given, flagged.as_ref(), &field)?;
         let info = ImageInfo {
             pages: 1,
             pixel_size: None,
@@ -80,13 +138,19 @@ pub fn segment_array(
 /// Runs the settings on an image file (page `page=` of a stack), as `topocontour segment
 /// PATH` does.
 #[pyfunction]
-pub fn segment_path(py: Python<'_>, path: PathBuf, argv: Vec<String>) -> PyResult<Segmentation> {
-    let run = settings(argv)?;
+#[pyo3(signature = (path, argv, teach = None))]
+pub fn segment_path(
+    py: Python<'_>,
+    path: PathBuf,
+    argv: Vec<String>,
+    teach: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Segmentation> {
+    let (run, given) = settings_with(argv, teach)?;
     py.detach(move || {
-        let teach = classifier_for(&run).map_err(raise)?;
+        let flagged = classifier_for(&run).map_err(raise)?;
         let mut job = job_for(&path, &run).map_err(raise)?;
         let (image, info) = job.load().map_err(bad)?;
-        job.teach = teach_for(&run, teach.as_ref(), &image).map_err(raise)?;
+        job.teach = teacher(&run, given, flagged.as_ref(), &image)?;
         let done = run_loaded(&mut job, &run, image, info).map_err(raise)?;
         Ok(Segmentation::of(done, file_name(&path)))
     })
@@ -96,10 +160,17 @@ pub fn segment_path(py: Python<'_>, path: PathBuf, argv: Vec<String>) -> PyResul
 /// takes or "", help), in the order `topocontour segment --help` lists them.
 #[pyfunction]
 pub fn segment_flags() -> Vec<(String, String, String, String)> {
-    let cmd = Flags::command();
+    flags_of(&Flags::command(), &[])
+}
+
+/// The flags of `cmd` but those named in `skip`, as [`segment_flags`] lists them.
+pub fn flags_of(cmd: &clap::Command, skip: &[&str]) -> Vec<(String, String, String, String)> {
     cmd.get_arguments()
         .filter_map(|a| {
             let long = a.get_long()?.to_string();
+            if skip.contains(&long.as_str()) {
+                return None;
+            }
             let value = if a.get_action().takes_values() {
                 let names = a.get_value_names().unwrap_or_default();
                 let names: Vec<String> = names.iter().map(|n| n.to_string()).collect();
@@ -128,6 +199,7 @@ pub struct Segmentation {
     ev: Evolver,
     name: String,
     pixel: Option<PixelSize>,
+    classifier: Option<Arc<Classifier>>,
 }
 
 impl Segmentation {
@@ -136,6 +208,7 @@ impl Segmentation {
             ev: run.ev,
             name,
             pixel: run.pixel,
+            classifier: run.taught.map(|t| t.classifier),
         }
     }
 
@@ -187,6 +260,13 @@ impl Segmentation {
     #[getter]
     fn frames(&self) -> usize {
         self.ev.frames()
+    }
+
+    /// The classifier that taught the run (trained on `strokes=`, or the one given), as
+    /// `segment --save-classifier` saves it; None for a run not taught.
+    #[getter]
+    fn classifier(&self) -> Option<PyClassifier> {
+        self.classifier.clone().map(|inner| PyClassifier { inner })
     }
 
     /// Whether the contours settled before the frame limit.

@@ -18,8 +18,8 @@ pub use run::{
     classifier_for, init_shapes, job_for, params_for, run_loaded, teach_for, RunSettings,
 };
 pub use segment::{replay, segment, OutputArgs, ReplayArgs, SegmentArgs};
-pub use track::{track, TrackArgs};
-pub use train::{train, TrainArgs};
+pub use track::{track, tracker_for, TrackArgs};
+pub use train::{classifier_of, train, TrainArgs};
 
 use clap::{Parser, Subcommand};
 use std::io::Write;

@@ -98,22 +98,21 @@ struct Plan {
     overlay: Option<PathBuf>,
 }
 
-/// Runs `track`.
-pub fn track(a: &TrackArgs) -> Result<(), Failure> {
+/// `--shrink` checked: a number ≥ 0.
+fn check_shrink(a: &TrackArgs) -> Result<(), Failure> {
     if !(a.shrink.is_finite() && a.shrink >= 0.0) {
         return Err(bad(format!(
             "--shrink must be a number ≥ 0, got {}",
             a.shrink
         )));
     }
-    let movie = Movie::open(&a.movie).map_err(|e| bad(e.to_string()))?;
-    if let Some(t) = a.overlay_frame.filter(|&t| t >= movie.len()) {
-        return Err(bad(format!(
-            "--overlay-frame {t}: the movie has frames 0 to {}",
-            movie.len() - 1
-        )));
-    }
-    let (w, h) = movie.size();
+    Ok(())
+}
+
+/// The tracker the flags describe for a movie of `w` × `h` frames, its shapes checked
+/// against that size: what `track` runs and the Python bindings' `track` too.
+pub fn tracker_for(a: &TrackArgs, w: usize, h: usize) -> Result<Tracker, Failure> {
+    check_shrink(a)?;
     let run = a.run_settings();
     let init = init_shapes(&run, w, h)?;
     let mut settings = TrackSettings::new(params_for(&run)?);
@@ -124,8 +123,22 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
         return Err(bad("--levels must be at least 1"));
     }
     settings.levels = a.levels;
+    Ok(Tracker::new(settings, init))
+}
+
+/// Runs `track`.
+pub fn track(a: &TrackArgs) -> Result<(), Failure> {
+    check_shrink(a)?;
+    let movie = Movie::open(&a.movie).map_err(|e| bad(e.to_string()))?;
+    if let Some(t) = a.overlay_frame.filter(|&t| t >= movie.len()) {
+        return Err(bad(format!(
+            "--overlay-frame {t}: the movie has frames 0 to {}",
+            movie.len() - 1
+        )));
+    }
+    let (w, h) = movie.size();
+    let mut tracker = tracker_for(a, w, h)?;
     let plan = prepare(a)?;
-    let mut tracker = Tracker::new(settings, init);
     let mut kept: Vec<TrackedFrame> = Vec::new();
     let mut csv = String::from(ctc::CSV_HEADER);
     for (t, image) in movie.frames().map_err(|e| bad(e.to_string()))?.enumerate() {

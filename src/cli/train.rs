@@ -57,14 +57,8 @@ pub fn train(a: &TrainArgs) -> Result<(), Failure> {
             .map_err(|e| bad(format!("{}: {e}", pair[0].display())))?;
         taught.push((set.compute(image.width, image.height, &image.data), strokes));
     }
-    let pairs: Vec<(&Features, &Strokes)> = taught.iter().map(|(f, s)| (f, s)).collect();
-    let mut clf = Classifier::train_many(set, &pairs, &ForestParams::default());
-    clf.images = a.pairs.iter().step_by(2).map(|p| file_name(p)).collect();
-    if clf.labels.len() < 2 {
-        return Err(bad(
-            "the strokes mark only one class in all; paint background (1) or boundary (3) too",
-        ));
-    }
+    let images = a.pairs.iter().step_by(2).map(|p| file_name(p)).collect();
+    let clf = classifier_of(set, &taught, images)?;
     files
         .commit(vec![crate::io::classifier::to_bytes(&clf)])
         .map_err(|e| bad(e.to_string()))?;
@@ -82,4 +76,23 @@ pub fn train(a: &TrainArgs) -> Result<(), Failure> {
         a.out.display()
     ));
     Ok(())
+}
+
+/// The classifier the strokes of several images teach (each pair one image's features,
+/// made by `set`, and its strokes), `images` their names: what `train` writes and the
+/// Python bindings' `train` returns.
+pub fn classifier_of(
+    set: FeatureSet,
+    taught: &[(Features, Strokes)],
+    images: Vec<String>,
+) -> Result<Classifier, Failure> {
+    let pairs: Vec<(&Features, &Strokes)> = taught.iter().map(|(f, s)| (f, s)).collect();
+    let mut clf = Classifier::train_many(set, &pairs, &ForestParams::default());
+    clf.images = images;
+    if clf.labels.len() < 2 {
+        return Err(bad(
+            "the strokes mark only one class in all; paint background (1) or boundary (3) too",
+        ));
+    }
+    Ok(clf)
 }
