@@ -83,6 +83,9 @@ fn main() {
             std::process::exit(2);
         }
     };
+    if cli.command.is_some() {
+        topocontour::cli::signals::install();
+    }
     let result = match &cli.command {
         // The finished evolver is not dropped: the process ends right after.
         Some(Command::Segment(a)) => segment(a).map(std::mem::forget),

@@ -20,7 +20,6 @@ use crate::learn::Teach;
 use clap::Args;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The arguments of `batch`.
 #[derive(Args, Debug, Clone)]
@@ -110,13 +109,10 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
     // The summary is prepared like every output: checked before any work.
     let summary_path = a.out.join("summary.csv");
     let summary = OutputFiles::prepare(None, &[&summary_path]).map_err(|e| bad(e.to_string()))?;
-    let stop = std::sync::Arc::new(AtomicBool::new(false));
-    {
-        let stop = stop.clone();
-        // A second handler cannot be installed in the same process (tests run batch
-        // once per process); without one, Ctrl-C ends the run as any signal does.
-        let _ = ctrlc::set_handler(move || stop.store(true, Ordering::SeqCst));
-    }
+    // A summary left by an earlier run would describe other outputs than the ones this
+    // run writes (or, if it is killed, half of them); it goes now and comes back at the end.
+    remove_old_summary(&summary_path)?;
+    super::signals::stop_gently();
     let bar = progress_bar(images.len());
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(a.jobs.map_or(0, |n| n.min(cores())))
@@ -130,7 +126,7 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
             .par_iter()
             .zip(&stems)
             .map(|(img, stem)| {
-                if stop.load(Ordering::SeqCst) {
+                if super::signals::stop_asked() {
                     return (img.clone(), None);
                 }
                 let r = one_image(img, stem, a, teach.as_ref());
@@ -164,6 +160,16 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
         a.out.display()
     ));
     Ok(())
+}
+
+/// Removes the summary of an earlier run (prepared outputs are regular files or absent).
+fn remove_old_summary(path: &Path) -> Result<(), Failure> {
+    match std::fs::remove_file(path) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+            Err(bad(format!("cannot replace {}: {e}", path.display())))
+        }
+        _ => Ok(()),
+    }
 }
 
 /// The cores this process may use (more threads only wait for them).

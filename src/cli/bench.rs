@@ -29,13 +29,15 @@ pub struct BenchArgs {
 pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
     let mut dirs = Vec::new();
     for c in &b.cases {
-        if c.join("case.json").is_file() {
+        // A case.json that is there but not a regular file (a FIFO, a link to a device)
+        // is an error of that case, not a folder to skip.
+        if has_case(c) {
             dirs.push(c.clone());
         } else if let Ok(rd) = std::fs::read_dir(c) {
             let mut sub: Vec<PathBuf> = rd
                 .flatten()
                 .map(|e| e.path())
-                .filter(|p| p.join("case.json").is_file())
+                .filter(|p| has_case(p))
                 .collect();
             sub.sort();
             dirs.extend(sub);
@@ -84,6 +86,11 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
         }
     }
     stdout.flush().or_else(table_end)
+}
+
+/// Whether `dir` holds an entry named case.json, whatever it is.
+fn has_case(dir: &std::path::Path) -> bool {
+    dir.join("case.json").symlink_metadata().is_ok()
 }
 
 /// A failed write of the table: the reader went away (fine), or the output failed.

@@ -7,6 +7,7 @@ mod batch;
 mod bench;
 mod run;
 mod segment;
+pub mod signals;
 mod track;
 mod train;
 

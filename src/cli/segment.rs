@@ -10,6 +10,9 @@ use crate::io::{Format, OutputFiles, Outputs};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
 
+/// A case file is a few seeds and settings; anything larger is not one.
+const MAX_CASE_BYTES: u64 = 1 << 20;
+
 /// The arguments of `segment`.
 #[derive(Args, Debug, Clone)]
 pub struct SegmentArgs {
@@ -266,8 +269,20 @@ impl SegmentArgs {
     /// The arguments an evaluation case folder (image.png + case.json) asks for, with no
     /// outputs.
     pub fn from_case(dir: &Path) -> Result<SegmentArgs, Failure> {
-        let text = std::fs::read_to_string(dir.join("case.json"))
-            .map_err(|e| bad(format!("{}: {e}", dir.display())))?;
+        use crate::io::load::{read_regular, Unread};
+        let file = dir.join("case.json");
+        let bytes = read_regular(&file, MAX_CASE_BYTES).map_err(|e| {
+            bad(match e {
+                Unread::Io(e) => format!("{}: {e}", file.display()),
+                Unread::NotAFile => format!("{} is not a regular file", file.display()),
+                Unread::TooLarge(n) => format!(
+                    "{}: {n} bytes, more than any case file ({MAX_CASE_BYTES})",
+                    file.display()
+                ),
+            })
+        })?;
+        let text = String::from_utf8(bytes)
+            .map_err(|_| bad(format!("{}: not UTF-8 text", file.display())))?;
         let case: CaseFile = serde_json::from_str(&text)
             .map_err(|e| bad(format!("{}/case.json: {e}", dir.display())))?;
         let init = case.init;

@@ -219,8 +219,9 @@ fn shown(v: f64) -> String {
 const MAX_WEIGHT: f64 = 100.0;
 
 /// Bytes a run holds per pixel of its image at its peak (the image, the pyramid, the
-/// local statistics and decision levels): 44 measured on 2048² and 4096² wraps
-/// (docs/decisions.md), rounded up.
+/// local statistics and decision levels, and with automatic seeds their distance
+/// transform and maxima): a wrap measures 22 on 4096² and 8000², automatic seeds 38 on
+/// 4096² (docs/decisions.md, 2026-12-02); the larger, rounded up.
 pub const BYTES_PER_PIXEL: u64 = 48;
 
 /// The memory this process may still use: the smaller of what the system has available

@@ -66,68 +66,83 @@ pub fn box_mean(f: &Field, r: usize) -> Field {
 /// The maximum (`max` true) or minimum over the (2r+1)² box around each pixel, the box
 /// cut to the image. Separable, each pass by van Herk and Gil-Werman: in blocks of 2r + 1
 /// a running extreme from the block's start and one from its end, so every window is one
-/// comparison of two of them (O(1) per pixel, whatever r). Each pass runs on whole rows
-/// at once (element-wise; the horizontal one on the transposed image), so it reads
-/// memory in order and vectorises.
+/// comparison of two of them (O(1) per pixel, whatever r). Each pass runs on a strip of
+/// 64 columns at once (element-wise; the horizontal one on a transposed strip of
+/// rows), so it reads memory in order and vectorises, and its buffers stay a sliver of
+/// the image: the result is written over the input ([`box_extreme_in`]), so a large
+/// image costs no more than its own field.
 pub fn box_extreme(f: &Field, r: usize, max: bool) -> Field {
+    box_extreme_in(f.clone(), r, max)
+}
+
+/// [`box_extreme`] of a field the caller no longer needs, written over it.
+pub fn box_extreme_in(mut f: Field, r: usize, max: bool) -> Field {
     // Monomorphised per extreme, so the comparisons inline and vectorise.
     if max {
-        box_extreme_with(f, r, f32::max, f32::NEG_INFINITY)
+        box_extreme_with(&mut f, r, f32::max, f32::NEG_INFINITY);
     } else {
-        box_extreme_with(f, r, f32::min, f32::INFINITY)
+        box_extreme_with(&mut f, r, f32::min, f32::INFINITY);
     }
+    f
 }
 
-fn box_extreme_with(
-    f: &Field,
-    r: usize,
-    pick: impl Fn(f32, f32) -> f32 + Copy,
-    identity: f32,
-) -> Field {
+/// Rows or columns extremised together: wide enough to vectorise, narrow enough that a
+/// pass's buffers are a sliver of the image.
+const STRIP: usize = 64;
+
+fn box_extreme_with(f: &mut Field, r: usize, pick: impl Fn(f32, f32) -> f32 + Copy, identity: f32) {
     let (w, h) = (f.width, f.height);
-    let (mut out, mut ahead, mut behind) = (Vec::new(), Vec::new(), Vec::new());
-    // Horizontal: on the transposed image the columns are rows, extremised as whole
-    // vectors like the vertical pass (a pass along each short row does not vectorise).
-    let columns = transpose(&f.data, w, h);
-    extreme_1d(
-        &columns,
-        h,
-        r,
-        pick,
-        identity,
-        &mut out,
-        &mut ahead,
-        &mut behind,
-    );
-    let rows = transpose(&out, h, w);
-    extreme_1d(
-        &rows,
-        w,
-        r,
-        pick,
-        identity,
-        &mut out,
-        &mut ahead,
-        &mut behind,
-    );
-    Field::new(w, h, out)
-}
-
-/// `data` (`h` rows of `w`) with rows and columns exchanged (`w` rows of `h`).
-fn transpose(data: &[f32], w: usize, h: usize) -> Vec<f32> {
-    let mut t = vec![0f32; w * h];
-    // In tiles, so both sides stay in cache.
-    const T: usize = 32;
-    for y0 in (0..h).step_by(T) {
-        for x0 in (0..w).step_by(T) {
-            for y in y0..(y0 + T).min(h) {
-                for x in x0..(x0 + T).min(w) {
-                    t[x * h + y] = data[y * w + x];
-                }
+    let (mut strip, mut out, mut ahead, mut behind) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    // Horizontal: a strip of rows transposed, so its columns are items of `s` values.
+    for y0 in (0..h).step_by(STRIP) {
+        let s = STRIP.min(h - y0);
+        strip.clear();
+        strip.resize(w * s, 0.0);
+        for y in 0..s {
+            let row = &f.data[(y0 + y) * w..(y0 + y + 1) * w];
+            for (x, &v) in row.iter().enumerate() {
+                strip[x * s + y] = v;
+            }
+        }
+        extreme_1d(
+            &strip,
+            s,
+            r,
+            pick,
+            identity,
+            &mut out,
+            &mut ahead,
+            &mut behind,
+        );
+        for y in 0..s {
+            let row = &mut f.data[(y0 + y) * w..(y0 + y + 1) * w];
+            for (x, v) in row.iter_mut().enumerate() {
+                *v = out[x * s + y];
             }
         }
     }
-    t
+    // Vertical: a strip of columns, its rows the items.
+    for x0 in (0..w).step_by(STRIP) {
+        let s = STRIP.min(w - x0);
+        strip.clear();
+        for y in 0..h {
+            strip.extend_from_slice(&f.data[y * w + x0..y * w + x0 + s]);
+        }
+        extreme_1d(
+            &strip,
+            s,
+            r,
+            pick,
+            identity,
+            &mut out,
+            &mut ahead,
+            &mut behind,
+        );
+        for y in 0..h {
+            f.data[y * w + x0..y * w + x0 + s].copy_from_slice(&out[y * s..(y + 1) * s]);
+        }
+    }
 }
 
 /// The running extreme over windows of 2r + 1 items of `src`, an item being `width`
@@ -191,6 +206,32 @@ fn extreme_1d(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn box_extreme_over_many_strips_equals_the_brute_force_extreme() {
+        // Wider and taller than a strip, with a partial last strip both ways.
+        let (w, h) = (2 * STRIP + 11, STRIP + 7);
+        let f = Field::new(
+            w,
+            h,
+            (0..w * h).map(|i| ((i * 7919) % 101) as f32).collect(),
+        );
+        for (r, max) in [(1, true), (3, false), (9, true)] {
+            let m = box_extreme(&f, r, max);
+            for y in (0..h).step_by(5) {
+                for x in (0..w).step_by(3) {
+                    let mut e = if max { f32::MIN } else { f32::MAX };
+                    for yy in y.saturating_sub(r)..(y + r + 1).min(h) {
+                        for xx in x.saturating_sub(r)..(x + r + 1).min(w) {
+                            let v = f.at(xx, yy);
+                            e = if max { e.max(v) } else { e.min(v) };
+                        }
+                    }
+                    assert_eq!(m.at(x, y), e, "r {r} max {max} at {x},{y}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn box_extreme_equals_the_brute_force_extreme() {

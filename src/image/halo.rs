@@ -6,7 +6,7 @@
 //! phase contrast the mirror rule clips the dark side.
 
 use super::field::Field;
-use super::filters::box_extreme;
+use super::filters::{box_extreme, box_extreme_in};
 use super::intensity::{IntensityModel, Polarity};
 use super::scale::half_width;
 
@@ -46,7 +46,7 @@ pub fn lift_narrow_halo(image: &Field, polarity: Polarity, b: f64) -> Field {
     let bright = polarity == Polarity::Bright;
     let smooth = image.blur(&[0.25, 0.5, 0.25]);
     // Dark cells: open the bright side (min, then max); bright cells the mirror.
-    let opened = box_extreme(&box_extreme(&smooth, h, bright), h, !bright);
+    let opened = box_extreme_in(box_extreme(&smooth, h, bright), h, !bright);
     let b = b as f32;
     let data = image
         .data

@@ -49,7 +49,7 @@
 //! figures are in `docs/decisions.md`.
 
 use super::field::Field;
-use super::filters::{box_extreme, box_mean};
+use super::filters::{box_extreme_in, box_mean};
 use super::intensity::{IntensityModel, MIN_CONTRAST};
 use super::modality::Modality;
 use super::noise::noise_sigma;
@@ -161,9 +161,9 @@ pub fn decision_field(
     } = *rule;
     let bright = model.object >= model.background;
     let s = if bright { 1.0 } else { -1.0 };
-    let mut t = box_extreme(&image.blur(&[0.25, 0.5, 0.25]), r.div_ceil(2), bright);
+    let mut t = box_extreme_in(image.blur(&[0.25, 0.5, 0.25]), r.div_ceil(2), bright);
     // The emptiest r-box within reach: a mean first, so that noise does not bias it.
-    let mut half = box_extreme(&box_mean(image, r), BACKGROUND_REACH * r, !bright);
+    let mut half = box_extreme_in(box_mean(image, r), BACKGROUND_REACH * r, !bright);
     let tg = model.threshold();
     for (v, h) in t.data.iter_mut().zip(half.data.iter_mut()) {
         // Background may be raised by uneven light (more object-like than the global

@@ -96,6 +96,8 @@ impl ImageModel {
             .flatten();
         let seen = for_modality(image, params.polarity, params.modality, band);
         let pyramid = Pyramid::new(&seen, params.coarsest_side, PYRAMID_LEVELS);
+        // A phase-contrast image's clipped copy is not needed past its pyramid.
+        drop(seen);
         let fine = &pyramid.levels[0].image;
         let (object_hint, background_hint) = hints(fine, shapes);
         let global = IntensityModel::learn(fine, params.polarity, object_hint, background_hint);

@@ -14,6 +14,10 @@
 //! hidden temporary, never a half-written output. A replaced file keeps its permissions
 //! (a private 0600 result stays private).
 //!
+//! Every temporary alive is listed ([`remove_temporaries`]): the command line's signal
+//! handler removes them on SIGINT, SIGTERM or SIGHUP before the process ends, so an
+//! interrupted run leaves nothing behind (only `kill -9` can leave a hidden temporary).
+//!
 //! The temporaries are not fsynced before the rename: readers, and later runs, see the
 //! old file or the whole new one either way; only a power cut right after the rename
 //! could leave an empty file on some file systems. We choose the batch user's speed: an
@@ -21,6 +25,34 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// The temporaries not yet renamed or removed, for a signal handler to remove.
+static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+fn live() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    // A panic while holding the lock leaves a list that is still right.
+    LIVE.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+fn forget_temporary(path: &Path) {
+    let mut l = live();
+    if let Some(i) = l.iter().position(|p| p == path) {
+        l.swap_remove(i);
+    }
+}
+
+/// Removes every temporary of every [`OutputFiles`] alive, and keeps them from being
+/// made again: for a handler that ends the process right after. Outputs already renamed
+/// into place stay; the rest of the run's outputs are never written.
+pub fn remove_temporaries() {
+    let mut l = live();
+    for p in l.drain(..) {
+        let _ = std::fs::remove_file(p);
+    }
+    // The lock is held until the process exits: a temporary being made now waits.
+    std::mem::forget(l);
+}
 
 /// Why an output cannot be written. Every variant is the user's to fix (exit code 2).
 #[derive(Debug, thiserror::Error)]
@@ -79,9 +111,40 @@ fn identity_of_existing(meta: &std::fs::Metadata) -> Identity {
     }
 }
 
+/// A listed temporary: unlisted when it is renamed into place or removed.
+struct Temporary(Option<tempfile::NamedTempFile>);
+
+impl Temporary {
+    fn file(&mut self) -> &mut tempfile::NamedTempFile {
+        self.0.as_mut().expect("a temporary not yet renamed")
+    }
+
+    fn persist(mut self, path: &Path) -> std::io::Result<()> {
+        let tmp = self.0.take().expect("a temporary not yet renamed");
+        let tmp_path = tmp.path().to_path_buf();
+        // The replaced file's permissions, not the umask's (a 0600 file stays 0600).
+        if let Ok(meta) = std::fs::metadata(path) {
+            let _ = std::fs::set_permissions(&tmp_path, meta.permissions());
+        }
+        let persisted = tmp.persist(path).map(drop).map_err(|e| e.error);
+        forget_temporary(&tmp_path);
+        persisted
+    }
+}
+
+impl Drop for Temporary {
+    fn drop(&mut self) {
+        if let Some(tmp) = self.0.take() {
+            let path = tmp.path().to_path_buf();
+            drop(tmp); // removes the file
+            forget_temporary(&path);
+        }
+    }
+}
+
 /// The output files of one run, checked and with their temporaries created.
 pub struct OutputFiles {
-    files: Vec<(PathBuf, tempfile::NamedTempFile)>,
+    files: Vec<(PathBuf, Temporary)>,
 }
 
 impl OutputFiles {
@@ -161,8 +224,9 @@ impl OutputFiles {
         assert_eq!(contents.len(), self.files.len(), "one content per output");
         let mut written = Vec::with_capacity(self.files.len());
         for ((path, mut tmp), bytes) in self.files.into_iter().zip(contents) {
-            tmp.write_all(&bytes)
-                .and_then(|()| tmp.flush())
+            let file = tmp.file();
+            file.write_all(&bytes)
+                .and_then(|()| file.flush())
                 .map_err(|source| OutputError::Io {
                     path: path.clone(),
                     source,
@@ -170,14 +234,8 @@ impl OutputFiles {
             written.push((path, tmp));
         }
         for (path, tmp) in written {
-            // The replaced file's permissions, not the umask's (a 0600 file stays 0600).
-            if let Ok(meta) = std::fs::metadata(&path) {
-                let _ = std::fs::set_permissions(tmp.path(), meta.permissions());
-            }
-            tmp.persist(&path).map_err(|e| OutputError::Io {
-                path,
-                source: e.error,
-            })?;
+            tmp.persist(&path)
+                .map_err(|source| OutputError::Io { path, source })?;
         }
         Ok(())
     }
@@ -205,12 +263,15 @@ fn name_max(dir: &Path) -> usize {
 
 /// A temporary file in `dir`, created exclusively with a random name; mode 0666 before
 /// the umask, as any file the user's programs create.
-fn temporary_in(dir: &Path) -> std::io::Result<tempfile::NamedTempFile> {
+fn temporary_in(dir: &Path) -> std::io::Result<Temporary> {
     let mut b = tempfile::Builder::new();
     b.prefix(".topocontour-").suffix(".tmp");
     #[cfg(unix)]
     b.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
-    b.tempfile_in(dir)
+    let mut l = live();
+    let tmp = b.tempfile_in(dir)?;
+    l.push(tmp.path().to_path_buf());
+    Ok(Temporary(Some(tmp)))
 }
 
 /// Writes one file atomically with the checks of [`OutputFiles::prepare`].

@@ -245,9 +245,15 @@ impl Session {
                 "{n} bytes, more than any session ({MAX_SESSION_BYTES})"
             )),
         })?;
-        let text = String::from_utf8(bytes).map_err(|_| refused("not UTF-8 text".into()))?;
-        let s: Session = serde_json::from_str(&text)
-            .map_err(|e| SessionError::Format(path.into(), e.to_string()))?;
+        Self::parse(&bytes, path)
+    }
+
+    /// A session from the bytes of a file (`path` names it in errors): UTF-8 JSON of
+    /// this format and version, no unknown keys.
+    pub fn parse(bytes: &[u8], path: &Path) -> Result<Self, SessionError> {
+        let refused = |why: String| SessionError::Format(path.into(), why);
+        let text = std::str::from_utf8(bytes).map_err(|_| refused("not UTF-8 text".into()))?;
+        let s: Session = serde_json::from_str(text).map_err(|e| refused(e.to_string()))?;
         if s.format != FORMAT || s.version != VERSION {
             return Err(SessionError::Format(
                 path.into(),

@@ -69,7 +69,9 @@ pub fn nucleate(set: &mut ContourSet, view: &LevelView, scale: f64) -> Vec<Topol
             && (y - 1..=y + 1).all(|yy| (x - 1..=x + 1).all(|xx| inside[yy * w + xx]))
     };
     listed.retain(|&i| deep(i));
-    let mut candidate = vec![false; w * h];
+    // The inside mask becomes the candidates' (one image-sized mask, not two).
+    let mut candidate = inside;
+    candidate.fill(false);
     for &i in &listed {
         candidate[i] = true;
     }

@@ -1,0 +1,41 @@
+//! What SIGINT, SIGTERM and SIGHUP do to a headless run: no temporary is left behind.
+//!
+//! Outputs are written to hidden temporaries and renamed into place at the end
+//! ([`crate::io::atomic`]). Without a handler a signal ends the process at once and every
+//! temporary stays on disk. The handler (ctrlc's thread, not signal context, so it may
+//! take locks and remove files) removes them and exits with 130, the shell's code for an
+//! interrupted command. A `batch` asks first to stop gently: the first signal lets the
+//! images in progress finish and the summary be written (listing the rest as not done);
+//! a second one ends it at once, as for any other command.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Set by a run that stops by itself at the next image when asked.
+static GENTLE: AtomicBool = AtomicBool::new(false);
+/// Set by the first signal of a gentle run.
+static ASKED: AtomicBool = AtomicBool::new(false);
+
+/// Installs the handler; once per process, before any output is prepared.
+pub fn install() {
+    // Another handler already installed (a library user's) stays theirs.
+    let _ = ctrlc::set_handler(on_signal);
+}
+
+fn on_signal() {
+    if GENTLE.load(Ordering::SeqCst) && !ASKED.swap(true, Ordering::SeqCst) {
+        return;
+    }
+    crate::io::atomic::remove_temporaries();
+    super::note("interrupted: outputs not yet written were removed");
+    std::process::exit(130);
+}
+
+/// From now on the first signal only asks the run to stop; [`stop_asked`] tells.
+pub(crate) fn stop_gently() {
+    GENTLE.store(true, Ordering::SeqCst);
+}
+
+/// Whether a signal asked a gentle run to stop.
+pub(crate) fn stop_asked() -> bool {
+    ASKED.load(Ordering::SeqCst)
+}
