@@ -24,6 +24,7 @@
 
 pub mod carry;
 pub mod lineage;
+mod resume;
 
 pub use lineage::{Division, Lineage, Track};
 
