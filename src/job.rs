@@ -15,7 +15,9 @@
 //! the same job on the same image gives the same contours frame by frame; a session
 //! ([`crate::io::session`]) is a job plus a checked reference to its image.
 
-use crate::evolution::{find_seeds, Edit, EvolveError, Evolver, Field, Params, Polarity, Shape};
+use crate::evolution::{
+    find_seeds, Edit, EvolveError, Evolver, Field, Mode, Params, Polarity, Shape,
+};
 use crate::image::Stored;
 use crate::io::{load_image_page, ImageInfo, LoadError, PixelSize};
 use crate::learn::guide::{self, Guide};
@@ -179,7 +181,9 @@ impl Job {
     /// [`Job::start`], and what teaching gave when the job is taught: with strokes the
     /// classifier trained here (seeded: the same strokes give the same forest), else
     /// the one given; the run reads its probabilities, and automatic seeds are the
-    /// connected interiors of its object class ([`guide::seeds`]).
+    /// connected interiors of its object class ([`guide::seeds`]). In a run whose
+    /// topology adapts, a rectangle or disk holding two or more of those interiors
+    /// gives way to them ([`guide::start_shapes`]).
     pub fn start_taught(
         &self,
         image: &Field,
@@ -199,9 +203,24 @@ impl Job {
         let guide = taught
             .as_ref()
             .map(|t| Guide::new(t.probabilities.clone(), &self.params));
+        let found = match &guide {
+            Some(g) if self.auto_seeds || self.params.mode == Mode::Adaptive => {
+                guide::interiors(&g.probabilities)
+            }
+            _ => Vec::new(),
+        };
+        let mut taken = vec![false; found.len()];
+        if guide.is_some() && self.params.mode == Mode::Adaptive {
+            (shapes, taken) = guide::start_shapes(&shapes, &found);
+        }
         if self.auto_seeds {
             let found = match &guide {
-                Some(g) => guide::seeds(&g.probabilities),
+                // Those a wrap gave way to are there already.
+                Some(_) => found
+                    .into_iter()
+                    .zip(taken)
+                    .filter_map(|((s, _), t)| (!t).then_some(s))
+                    .collect(),
                 None => find_seeds(&image, self.params.polarity, self.params.modality),
             };
             if found.is_empty() && shapes.is_empty() {

@@ -9,7 +9,8 @@ use common::{bin, refused, s, workdir};
 use std::path::Path;
 use topocontour::check::{strokes_for, touching_rods};
 use topocontour::contours::measure::regions;
-use topocontour::evolution::{Mode, Params, Polarity};
+use topocontour::evolution::{Mode, Params, Polarity, Shape};
+use topocontour::geometry::Point;
 use topocontour::job::Job;
 use topocontour::learn::{Strokes, Teach};
 
@@ -27,6 +28,12 @@ fn write_gray(path: &Path, data: Vec<u8>) {
 /// instance run (seeds from the classifier, preserve mode) on strokes with or without
 /// the boundary class.
 fn rods_found(boundary: bool, name: &str) -> (usize, usize) {
+    rods_found_by(boundary, name, Mode::Preserve, None)
+}
+
+/// [`rods_found`] in `mode`, from a wrap `margin` px inside the border (none: the
+/// classifier's seeds).
+fn rods_found_by(boundary: bool, name: &str, mode: Mode, wrap: Option<f64>) -> (usize, usize) {
     let dir = workdir("learn", name);
     let (img, labels) = touching_rods(W, H, 24, 8);
     let image = dir.join("rods.png");
@@ -39,14 +46,20 @@ fn rods_found(boundary: bool, name: &str) -> (usize, usize) {
     let strokes = dir.join("strokes.png");
     write_gray(&strokes, strokes_for(&labels, W, H, 8, boundary));
     let params = Params {
-        mode: Mode::Preserve,
+        mode,
         polarity: Polarity::Dark,
         ..Params::default()
     };
+    let shapes = wrap.map_or(Vec::new(), |m| {
+        vec![Shape::Rect {
+            min: Point::new(m, m),
+            max: Point::new(W as f64 - m, H as f64 - m),
+        }]
+    });
     let job = Job {
-        auto_seeds: true,
+        auto_seeds: wrap.is_none(),
         teach: Some(Teach::strokes(Strokes::read(&strokes, W, H).unwrap())),
-        ..Job::new(&image, Vec::new(), params)
+        ..Job::new(&image, shapes, params)
     };
     let run = job.run().unwrap();
     let rods = labels.iter().copied().max().unwrap() as usize;
@@ -68,6 +81,16 @@ fn boundary_strokes_split_touching_rods() {
     eprintln!("one object per rod: {with} of {rods} with boundary strokes, {without} without");
     assert!(with * 10 >= rods * 9, "{with} of {rods}");
     assert!(without * 2 <= rods, "{without} of {rods}");
+}
+
+/// A wrap taught with boundary strokes splits the colony into its rods: the wrap starts
+/// from the classifier's objects (a front shrinking from the rectangle cannot follow
+/// the boundary band between touching rods, and gave one object for the colony).
+#[test]
+fn a_taught_wrap_splits_touching_rods() {
+    let (with, rods) = rods_found_by(true, "wrap", Mode::Adaptive, Some(2.0));
+    eprintln!("one object per rod: {with} of {rods} from a wrap");
+    assert!(with * 10 >= rods * 7, "{with} of {rods}");
 }
 
 #[test]

@@ -22,6 +22,7 @@ impl TopoApp {
             Group::Parameters => self.set_parameter(c),
             Group::Files => self.files(c),
             Group::Movie => self.movie_command(c),
+            Group::Train => self.train_command(c),
         }
     }
 
@@ -72,7 +73,12 @@ impl TopoApp {
             Command::FindSeeds => {
                 let Some(img) = &doc.image else { return };
                 let p = &doc.settings.params;
-                let found = find_seeds(img, p.polarity, p.modality);
+                let (img, p) = (img.clone(), (p.polarity, p.modality));
+                let found = match self.taught_seeds() {
+                    Some(seeds) => seeds,
+                    None => find_seeds(&img, p.0, p.1),
+                };
+                let doc = &mut self.doc;
                 self.status.notice = Some(format!("found {} objects: seeds placed", found.len()));
                 doc.shapes.extend(found);
                 doc.found_seeds = true;

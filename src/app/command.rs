@@ -24,6 +24,8 @@ pub enum Tool {
     /// Push contours with a disc: from inside a region its boundary moves out, from
     /// outside it moves in (merges, splits and holes happen exactly).
     Brush,
+    /// Paint training strokes (background, object, boundary) for the pixel classifier.
+    Train,
 }
 
 /// Everything a widget can ask for; applied in one place, [`super::TopoApp::apply`].
@@ -156,10 +158,44 @@ pub enum Command {
     SeekMovieFrame(usize),
     /// Track the movie from frame 0 in the background.
     Track,
+    /// Track from frame 0 even though it replaces the corrections made by hand.
+    TrackConfirmed,
+    /// Track on from the last frame tracked.
+    ContinueTrack,
+    /// Put the correction of tracked frame `n` into the tracking and track the frames
+    /// after it again, even though that replaces later corrections.
+    Retrack(usize),
+    /// Close the question on screen.
+    CloseQuestion,
     /// Stop tracking after the frame in progress (the frames tracked are kept).
     CancelTrack,
     /// Select a track (its outline is highlighted, its row in the lineage view).
     SelectTrack(Option<u32>),
+    /// Paint a training stroke of `label` (0 erases) from `from` to `to`.
+    Paint {
+        /// Where the brush's centre was.
+        from: Point,
+        /// Where it is now.
+        to: Point,
+        /// 1 background, 2 object, 3 boundary, 0 erase.
+        label: u8,
+        /// The brush's radius, pixels.
+        radius: f64,
+        /// Which stroke (press) this is part of: each stroke is one undo step.
+        stroke: u32,
+    },
+    /// The label the Train tool paints (keys 0–3).
+    SetTrainLabel(u8),
+    /// Show the probability map over the image (or not).
+    ShowProbabilities(bool),
+    /// Wipe every training stroke.
+    ClearStrokes,
+    /// Write the classifier trained on the strokes to a file.
+    SaveClassifier(PathBuf),
+    /// Read a classifier file: it applies while no strokes are painted.
+    LoadClassifier(PathBuf),
+    /// Choose a classifier file in a dialog, then save (true) or load (false) it.
+    ClassifierDialog(bool),
     /// Write the tracking result in the Cell Tracking Challenge layout to a folder.
     ExportCtc(PathBuf),
     /// Choose the folder in a dialog, then export the tracking result.
@@ -183,6 +219,8 @@ pub enum Group {
     Files,
     /// Movies and tracking.
     Movie,
+    /// Training strokes and classifiers.
+    Train,
 }
 
 /// How a command joins the undo history.
@@ -245,8 +283,16 @@ impl Command {
             OpenImage(..) | OpenDialog | Export(..) | ExportDialog(..) | SessionDialog(..)
             | SaveSession(..) | OpenSession(..) | ApplyToFolder(..) | ApplyToFolderDialog
             | CancelFolder => Group::Files,
-            OpenMovie(..) | OpenMovieDialog(..) | SeekMovieFrame(..) | Track | CancelTrack
-            | SelectTrack(..) | ExportCtc(..) | ExportCtcDialog => Group::Movie,
+            OpenMovie(..) | OpenMovieDialog(..) | SeekMovieFrame(..) | Track | TrackConfirmed
+            | ContinueTrack | Retrack(..) | CloseQuestion | CancelTrack | SelectTrack(..)
+            | ExportCtc(..) | ExportCtcDialog => Group::Movie,
+            Paint { .. }
+            | SetTrainLabel(..)
+            | ShowProbabilities(..)
+            | ClearStrokes
+            | SaveClassifier(..)
+            | LoadClassifier(..)
+            | ClassifierDialog(..) => Group::Train,
         }
     }
 
@@ -257,7 +303,9 @@ impl Command {
         let gesture = |g| Some(UndoKey::Gesture(g));
         match *self {
             MoveShape { index, .. } => gesture(Gesture::MoveShape(index)),
-            HandMove { stroke, .. } | Brush { stroke, .. } => gesture(Gesture::Stroke(stroke)),
+            HandMove { stroke, .. } | Brush { stroke, .. } | Paint { stroke, .. } => {
+                gesture(Gesture::Stroke(stroke))
+            }
             SetForces { .. } => gesture(Gesture::Forces),
             SetPixelSize(_) => gesture(Gesture::PixelSize),
             SetMinArea(_) => gesture(Gesture::MinArea),
@@ -265,7 +313,9 @@ impl Command {
             OpenImage(_) | OpenSession(_) | AddShape(_) | DeleteShape(_) | WrapBorder(_)
             | FindSeeds | SetPolarity(_) | SetModality(_) | SetOpenHoles(_) | SetMode(_)
             | SetBroadPhase(_) | SetCompare(_) | Reset | ResetParameters | SetPage(_)
-            | DeleteContour(_) | OpenMovie(_) => Some(UndoKey::Step),
+            | DeleteContour(_) | OpenMovie(_) | ClearStrokes | LoadClassifier(_) => {
+                Some(UndoKey::Step)
+            }
             GrabVertex { .. }
             | SelectContour(_)
             | Undo
@@ -288,10 +338,18 @@ impl Command {
             | OpenMovieDialog(_)
             | SeekMovieFrame(_)
             | Track
+            | TrackConfirmed
+            | ContinueTrack
+            | Retrack(_)
+            | CloseQuestion
             | CancelTrack
             | SelectTrack(_)
             | ExportCtc(_)
-            | ExportCtcDialog => None,
+            | ExportCtcDialog
+            | SetTrainLabel(_)
+            | ShowProbabilities(_)
+            | SaveClassifier(_)
+            | ClassifierDialog(_) => None,
         }
     }
 }

@@ -36,6 +36,10 @@ pub struct Document {
     pub shown: usize,
     /// The movie the image is a frame of, with what tracking found.
     pub movie: Option<super::MovieDoc>,
+    /// The Train tool's strokes and the classifier loaded.
+    pub train: super::Training,
+    /// The probability map the run on screen reads (none: it reads the image).
+    pub taught: Option<super::train::Key>,
 }
 
 /// The settings of a document's run: reset for every image opened (each image has its own

@@ -41,6 +41,9 @@ pub enum AppError {
     /// An output could not be written.
     #[error(transparent)]
     Output(#[from] crate::io::OutputError),
+    /// Teaching failed (the strokes or classifier do not fit), or a classifier file.
+    #[error("{0}")]
+    Teach(String),
     /// A movie could not be opened, read or tracked, or its result written.
     #[error("{0}")]
     Movie(String),
@@ -63,6 +66,11 @@ impl TopoApp {
                 self.view.prefs.last_dir = p.parent().map(Path::to_path_buf);
                 self.reset_run();
                 let mut doc = Document::of_image(f, crate::io::folder::file_name(&p));
+                // A classifier loaded serves every image opened after it.
+                if let Some(c) = self.doc.train.loaded.clone() {
+                    doc.train.loaded = Some(c);
+                    doc.train.revision = super::train::next_revision();
+                }
                 doc.image_path = Some(p);
                 doc.stack.pages = info.pages;
                 doc.stack.pixel = info.pixel_size;
@@ -177,12 +185,15 @@ impl TopoApp {
                 // The evolver at the frame on screen: its edits are the ones that led here.
                 let ev = run.evolver_at(doc.shown);
                 let edits = ev.edits().to_vec();
-                (
-                    ev.frames(),
-                    ev.is_finished(),
-                    ev.start_params().clone(),
-                    edits,
-                )
+                let mut params = ev.start_params().clone();
+                if doc.taught.is_some() {
+                    // A taught run read the map with the guide's polarity and kind; the
+                    // session keeps the user's, which the replay's guide reads it with.
+                    let p = doc.params();
+                    (params.polarity, params.modality, params.local) =
+                        (p.polarity, p.modality, p.local);
+                }
+                (ev.frames(), ev.is_finished(), params, edits)
             }
             None => (0, false, doc.params().clone(), Vec::new()),
         };
@@ -201,8 +212,15 @@ impl TopoApp {
         .with_edits(&edits)
         .with_page(doc.stack.page)
         .stored_at(path);
+        let (strokes, classifier) = match self.session_teaching() {
+            Some(super::train::Source::Strokes(st)) => (Some((*st).clone()), None),
+            Some(super::train::Source::Loaded(c)) => (None, Some((*c).clone())),
+            None => (None, None),
+        };
         let s = crate::io::session::Session {
             pixel_size: doc.stack.pixel.clone(),
+            strokes,
+            classifier,
             ..s
         };
         OutputFiles::prepare(Some(&abs), &[path])?.commit(vec![s.to_json()?.into_bytes()])?;
@@ -235,6 +253,11 @@ impl TopoApp {
         let doc = &mut self.doc;
         doc.settings.params = job.params.clone();
         doc.shapes = job.shapes.clone();
+        doc.train = match (&s.strokes, &s.classifier) {
+            (Some(st), _) => super::Training::of_strokes(st),
+            (None, Some(c)) => super::Training::of_classifier(c.clone()),
+            (None, None) => std::mem::take(&mut doc.train),
+        };
         if job.pixel_size.is_some() {
             doc.stack.pixel = job.pixel_size.clone();
         }
@@ -247,6 +270,8 @@ impl TopoApp {
         (doc.settings.params.weights, doc.settings.params.step) = (p.weights, p.step);
         doc.shown = run.last();
         doc.run = Some(run);
+        // The run read the map of these strokes: its overlay, when it comes, is no change.
+        self.doc.taught = job.teach.as_ref().and_then(|_| self.map_key());
         Ok(())
     }
 

@@ -27,6 +27,8 @@ impl TopoApp {
 
     /// Hand edits of the frame on screen.
     pub(super) fn hand_edit(&mut self, c: Command) {
+        // On a tracked movie frame the edits correct its tracked contours.
+        self.begin_correction();
         match c {
             Command::HandMove { vertex, to, .. } => {
                 let mut lead = None;
@@ -76,5 +78,7 @@ impl TopoApp {
         view.playing = false;
         view.selected = view.selected.filter(|&i| i < self.doc.shapes.len());
         view.selected_contour = None;
+        view.question = None;
+        self.after_undo_tracking();
     }
 }

@@ -4,12 +4,17 @@ use super::{Command, Ctx};
 use std::path::PathBuf;
 
 /// Every shortcut, as the help window lists it.
-pub const SHORTCUTS: [(&str, &str); 12] = [
+pub const SHORTCUTS: [(&str, &str); 14] = [
     ("Space", "play / pause"),
     ("Right arrow", "step one frame"),
     ("Left arrow", "one frame back"),
     ("E", "step to the next topology event"),
     ("[ and ]", "brush smaller / larger"),
+    (
+        "1, 2, 3, 0",
+        "Train tool: paint background, object, boundary; erase",
+    ),
+    ("P", "show or hide the probability map"),
     (
         "Delete",
         "delete the selected shape (or, with Edit, the selected contour)",
@@ -29,6 +34,7 @@ pub(super) fn keyboard(cx: &mut Ctx, ui: &egui::Ui) {
     }
     frame_keys(cx, ui);
     edit_keys(cx, ui);
+    train_keys(cx, ui);
     let dropped: Vec<PathBuf> = ui.input(|i| {
         i.raw
             .dropped_files
@@ -124,6 +130,30 @@ fn edit_keys(cx: &mut Ctx, ui: &egui::Ui) {
     if smaller || larger {
         let factor: f64 = if larger { 1.25 } else { 0.8 };
         *r = (*r * factor).clamp(*super::BRUSH_RADIUS.start(), *super::BRUSH_RADIUS.end());
+    }
+}
+
+/// The Train tool's labels (1–3, 0 erases) and the probability map's switch.
+fn train_keys(cx: &mut Ctx, ui: &egui::Ui) {
+    use egui::Key;
+    let keys = [
+        (Key::Num0, 0),
+        (Key::Num1, 1),
+        (Key::Num2, 2),
+        (Key::Num3, 3),
+    ];
+    let label = ui.input(|i| {
+        keys.iter()
+            .find(|(k, _)| i.key_pressed(*k))
+            .map(|&(_, l)| l)
+    });
+    if let Some(l) = label.filter(|_| cx.view.prefs.tool == super::Tool::Train) {
+        cx.send(Command::SetTrainLabel(l));
+    }
+    if ui.input(|i| i.key_pressed(Key::P)) {
+        cx.send(Command::ShowProbabilities(
+            !cx.view.prefs.show_probabilities,
+        ));
     }
 }
 

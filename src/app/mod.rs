@@ -7,6 +7,7 @@
 mod apply;
 mod canvas;
 mod command;
+mod correct;
 mod document;
 mod files;
 mod fill;
@@ -20,6 +21,8 @@ mod panels;
 mod path_prompt;
 mod playback;
 mod run;
+mod train;
+mod train_run;
 mod view;
 
 pub use crate::io::export::Format;
@@ -31,7 +34,8 @@ pub use movie::{MovieDoc, TrackJob, Tracking};
 pub use path_prompt::{PathPrompt, PathPurpose};
 pub use playback::{Preparing, PREPARE_IN_BACKGROUND};
 pub use run::{FrameRecord, RingView, Run};
-pub use view::{Prefs, Status, ViewState, BRUSH_RADIUS};
+pub use train::{Map, Trainer, Training};
+pub use view::{Prefs, Question, Status, ViewState, BRUSH_RADIUS};
 
 use crate::evolution::Field;
 use crate::geometry::Point;
@@ -66,6 +70,8 @@ pub struct Jobs {
     pub preparing: Option<Preparing>,
     /// A movie being tracked.
     pub track: Option<TrackJob>,
+    /// The probability map of the training strokes, made in the background.
+    pub trainer: train::Trainer,
 }
 
 /// What a view reads and where it sends its commands: the document only to read.
@@ -175,6 +181,8 @@ impl TopoApp {
             self.view.egui_ctx = Some(ctx.clone());
         }
         self.poll_tracking();
+        self.poll_map();
+        self.begin_correction();
         let mut cx = Ctx {
             doc: &self.doc,
             view: &mut self.view,
@@ -186,6 +194,7 @@ impl TopoApp {
         keys::keyboard(&mut cx, ui);
         keys::help_ui(&mut cx, &ctx);
         path_prompt::path_prompt_ui(&mut cx, &ctx);
+        panels::question_ui(&mut cx, &ctx);
         panels::top_bar(&mut cx, ui);
         panels::bottom_bar(&mut cx, ui);
         panels::side_panel(&mut cx, ui);
@@ -193,6 +202,8 @@ impl TopoApp {
         egui::CentralPanel::default().show(ui, |ui| canvas::canvas_ui(&mut cx, ui));
         self.status.draw_ms = t.elapsed().as_secs_f64() * 1e3;
         self.apply();
+        self.poll_correction(ctx.input(|i| i.pointer.any_down()));
+        self.request_map();
         self.tick(dt);
         if self.view.playing {
             ctx.request_repaint();

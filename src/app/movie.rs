@@ -4,16 +4,17 @@
 //! progress and Cancel, and the result: tracks drawn in one colour per track across
 //! frames, divisions in the event log, the lineage view, the Cell Tracking Challenge
 //! export. The window stays responsive while tracking: the thread sends each frame as it
-//! is done and wakes the window; nothing repaints once it ends.
+//! is done and wakes the window; nothing repaints once it ends. Hand corrections of a
+//! tracked frame track the frames after it again ([`super::correct`]).
 
 use super::{Command, Document, TopoApp};
 use crate::evolution::Field;
 use crate::io::export::ctc;
 use crate::io::movie::Movie;
 use crate::track::{carry::label_raster, Division, Lineage, TrackSettings, TrackedFrame, Tracker};
-use std::collections::HashMap;
+use std::collections::{BTreeSet, HashMap};
 use std::path::Path;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{channel, Receiver};
 use std::sync::Arc;
 
@@ -26,17 +27,35 @@ pub struct MovieDoc {
     pub frame: usize,
     /// What tracking found so far (none before Track).
     pub tracking: Option<Tracking>,
+    /// The run on screen holds the contours of this tracked frame for hand correction,
+    /// and this many of its edits are in the tracking already.
+    pub correcting: Option<(usize, usize)>,
 }
 
 /// A tracking result: the frames tracked (from frame 0 on) and their lineage.
 #[derive(Clone, Debug, Default)]
 pub struct Tracking {
+    /// Unique to this result: a tracking job writes only into the result it was started
+    /// for (Undo may have brought back another).
+    pub id: u64,
     /// The tracked frames, in order (frame `t` at index `t`).
     pub frames: Vec<Arc<TrackedFrame>>,
     /// The tracks.
     pub lineage: Lineage,
     /// Every frame of the movie was tracked.
     pub complete: bool,
+    /// How it was tracked (the frames after a correction are tracked so again).
+    pub settings: Option<TrackSettings>,
+    /// The frames the user corrected by hand.
+    pub corrected: BTreeSet<usize>,
+    /// A job was tracking into it (Undo back to it takes tracking up again).
+    pub running: bool,
+}
+
+/// A new [`Tracking::id`].
+pub(super) fn next_tracking_id() -> u64 {
+    static IDS: AtomicU64 = AtomicU64::new(1);
+    IDS.fetch_add(1, Ordering::Relaxed)
 }
 
 impl Tracking {
@@ -59,8 +78,8 @@ pub struct TrackJob {
     pub total: usize,
     /// Frames tracked so far.
     pub done: usize,
-    /// The movie it tracks (by name): its results go to a document showing this movie.
-    movie: String,
+    /// The [`Tracking::id`] its frames go to.
+    pub tracking: u64,
     cancel: Arc<AtomicBool>,
     rx: Receiver<Message>,
     handle: Option<std::thread::JoinHandle<()>>,
@@ -134,12 +153,16 @@ impl TopoApp {
                 self.view.follow_tracking = false;
                 self.show_movie_frame(t);
             }
-            Command::Track => self.start_tracking(),
+            Command::Track => self.track_again(false),
+            Command::TrackConfirmed => self.track_again(true),
+            Command::ContinueTrack => self.continue_tracking(),
             Command::CancelTrack => {
                 if let Some(j) = &self.jobs.track {
                     j.cancel.store(true, Ordering::SeqCst);
                 }
             }
+            Command::Retrack(t) => self.commit_correction(t, true),
+            Command::CloseQuestion => self.view.question = None,
             Command::SelectTrack(t) => self.view.selected_track = t,
             Command::ExportCtc(dir) => match self.export_ctc(&dir) {
                 Ok(n) => {
@@ -188,6 +211,7 @@ impl TopoApp {
             movie,
             frame: 0,
             tracking: None,
+            correcting: None,
         });
         self.doc = doc;
         self.view.prefs.last_dir = path.parent().map(Path::to_path_buf);
@@ -212,11 +236,39 @@ impl TopoApp {
     }
 
     fn put_movie_frame(&mut self, t: usize, f: Arc<Field>) {
+        if self.correction_waiting() {
+            self.status.notice = Some(
+                "the correction of this frame is not in the tracking yet: answer the question first".into(),
+            );
+            return;
+        }
         self.reset_run();
         if let Some(m) = self.doc.movie.as_mut() {
             m.frame = t;
+            m.correcting = None;
         }
         self.doc.image = Some(f);
+    }
+
+    /// Track (again) from frame 0: asks first when that would replace corrections.
+    fn track_again(&mut self, confirmed: bool) {
+        let corrected: Vec<usize> = self
+            .doc
+            .movie
+            .as_ref()
+            .and_then(|m| m.tracking.as_ref())
+            .map_or(Vec::new(), |t| t.corrected.iter().copied().collect());
+        if !confirmed && !corrected.is_empty() {
+            self.view.question = Some(super::Question::TrackAgain(corrected));
+            return;
+        }
+        self.view.question = None;
+        if self.doc.movie.is_some() && self.jobs.track.is_none() {
+            // Undo brings the tracking before back (tracking is started here, not by
+            // `apply_now`, so a question asked is no undo step).
+            self.history.push(self.doc.clone());
+        }
+        self.start_tracking();
     }
 
     /// Starts tracking the movie from frame 0 with the shapes on screen (none: automatic
@@ -230,10 +282,64 @@ impl TopoApp {
             self.status.notice = Some("tracking is already running".into());
             return;
         }
-        let movie = m.movie.clone();
         let init = self.doc.shapes.clone();
         let mut settings = TrackSettings::new(self.doc.params().clone());
         settings.auto_seeds = init.is_empty();
+        let tracking = Tracking {
+            id: next_tracking_id(),
+            settings: Some(settings.clone()),
+            running: true,
+            ..Tracking::default()
+        };
+        let id = tracking.id;
+        let total = m.movie.len();
+        if let Some(m) = self.doc.movie.as_mut() {
+            m.tracking = Some(tracking);
+            m.correcting = None;
+        }
+        if self.doc.run.is_some() && self.doc.movie.as_ref().is_some_and(|m| m.frame != 0) {
+            self.reset_run();
+        }
+        self.spawn_tracking(Tracker::new(settings, init), 0, id);
+        self.status.notice = Some(format!("tracking {total} frames…"));
+    }
+
+    /// Tracks on from the last frame tracked (after Cancel, or Undo back to a result
+    /// that was still being tracked).
+    fn continue_tracking(&mut self) {
+        if self.jobs.track.is_some() {
+            self.status.notice = Some("tracking is already running".into());
+            return;
+        }
+        let Some(m) = self.doc.movie.as_mut() else {
+            return;
+        };
+        let (w, h) = m.movie.size();
+        let Some(tr) = m.tracking.as_mut() else {
+            return self.start_tracking();
+        };
+        let (Some(last), Some(settings)) = (tr.frames.last().cloned(), tr.settings.clone()) else {
+            return self.start_tracking();
+        };
+        if last.frame + 1 >= m.movie.len() {
+            tr.complete = true;
+            tr.running = false;
+            return;
+        }
+        tr.running = true;
+        let (id, from) = (tr.id, last.frame + 1);
+        let tracker = Tracker::resume(settings, tr.lineage.clone(), &last, w, h);
+        self.spawn_tracking(tracker, from, id);
+        self.status.notice = Some(format!("tracking on from frame {from}…"));
+    }
+
+    /// Tracks the movie's frames from `from` on with `tracker` on a thread, into the
+    /// result `id`.
+    pub(super) fn spawn_tracking(&mut self, mut tracker: Tracker, from: usize, id: u64) {
+        self.stop_tracking();
+        let Some(m) = &self.doc.movie else { return };
+        let movie = m.movie.clone();
+        let total = movie.len() - from.min(movie.len());
         let cancel = Arc::new(AtomicBool::new(false));
         let (tx, rx) = channel();
         let (stop, ctx) = (cancel.clone(), self.view.egui_ctx.clone());
@@ -243,12 +349,11 @@ impl TopoApp {
                     c.request_repaint();
                 }
             };
-            let mut tracker = Tracker::new(settings, init);
             let frames = match movie.frames() {
                 Ok(f) => f,
                 Err(e) => return drop(tx.send(Message::Failed(e.to_string()))),
             };
-            for image in frames {
+            for image in frames.skip(from) {
                 if stop.load(Ordering::SeqCst) {
                     break;
                 }
@@ -269,20 +374,23 @@ impl TopoApp {
             }
             wake();
         });
-        let total = m.movie.len();
         self.jobs.track = Some(TrackJob {
             total,
             done: 0,
-            movie: m.movie.name().to_string(),
+            tracking: id,
             cancel,
             rx,
             handle: Some(handle),
         });
-        if let Some(m) = self.doc.movie.as_mut() {
-            m.tracking = Some(Tracking::default());
+        self.view.follow_tracking = from == 0;
+    }
+
+    /// Stops the tracking job (its thread ends after the frame in progress; what it
+    /// sends after is dropped).
+    pub(super) fn stop_tracking(&mut self) {
+        if let Some(j) = self.jobs.track.take() {
+            j.cancel.store(true, Ordering::SeqCst);
         }
-        self.view.follow_tracking = true;
-        self.status.notice = Some(format!("tracking {total} frames…"));
     }
 
     /// Takes the frames the tracking thread sent; ends the job when the thread ended.
@@ -303,8 +411,9 @@ impl TopoApp {
                         .doc
                         .movie
                         .as_mut()
-                        .filter(|m| m.movie.name() == job.movie);
-                    if let Some(tr) = same.and_then(|m| m.tracking.as_mut()) {
+                        .and_then(|m| m.tracking.as_mut())
+                        .filter(|tr| tr.id == job.tracking);
+                    if let Some(tr) = same {
                         tr.frames.truncate(t);
                         tr.frames.push(f);
                         tr.lineage = lineage;
@@ -319,9 +428,16 @@ impl TopoApp {
             if let Some(h) = job.handle.take() {
                 let _ = h.join();
             }
+            let id = job.tracking;
             self.jobs.track = None;
-            if let Some(tr) = self.doc.movie.as_mut().and_then(|m| m.tracking.as_mut()) {
-                tr.complete = done == total;
+            let movie = self.doc.movie.as_mut();
+            let len = movie.as_ref().map_or(0, |m| m.movie.len());
+            let tr = movie
+                .and_then(|m| m.tracking.as_mut())
+                .filter(|tr| tr.id == id);
+            if let Some(tr) = tr {
+                tr.complete = tr.frames.len() == len;
+                tr.running = false;
             }
             self.status.notice = Some(self.tracking_summary(done, total));
         }
@@ -336,13 +452,16 @@ impl TopoApp {
     }
 
     fn tracking_summary(&self, done: usize, total: usize) -> String {
-        let Some(tr) = self.doc.movie.as_ref().and_then(|m| m.tracking.as_ref()) else {
+        let m = self.doc.movie.as_ref();
+        let Some((tr, len)) = m.and_then(|m| m.tracking.as_ref().map(|t| (t, m.movie.len())))
+        else {
             return format!("tracked {done} of {total} frames");
         };
         let divisions = tr.divisions().count();
-        let stopped = if done < total { " (stopped)" } else { "" };
+        let n = tr.frames.len();
+        let stopped = if n < len { " (stopped)" } else { "" };
         format!(
-            "tracked {done} of {total} frames{stopped}: {} tracks, {divisions} divisions",
+            "tracked {n} of {len} frames{stopped}: {} tracks, {divisions} divisions",
             tr.lineage.tracks().len()
         )
     }

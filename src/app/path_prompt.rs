@@ -23,6 +23,8 @@ pub enum PathPurpose {
     OpenMovie,
     /// A folder for the tracking result.
     ExportCtc,
+    /// A classifier file to save (true) or load.
+    Classifier(bool),
 }
 
 impl PathPurpose {
@@ -36,6 +38,8 @@ impl PathPurpose {
             PathPurpose::ApplyToFolder => "Apply to folder",
             PathPurpose::OpenMovie => "Open movie",
             PathPurpose::ExportCtc => "Export tracks (CTC) to folder",
+            PathPurpose::Classifier(true) => "Save classifier as",
+            PathPurpose::Classifier(false) => "Load classifier",
         }
     }
     /// The command the path completes.
@@ -48,6 +52,8 @@ impl PathPurpose {
             PathPurpose::ApplyToFolder => Command::ApplyToFolder(path),
             PathPurpose::OpenMovie => Command::OpenMovie(path),
             PathPurpose::ExportCtc => Command::ExportCtc(path),
+            PathPurpose::Classifier(true) => Command::SaveClassifier(path),
+            PathPurpose::Classifier(false) => Command::LoadClassifier(path),
         }
     }
 }

@@ -27,6 +27,9 @@ impl TopoApp {
         self.jobs.preparing = None;
         self.doc.drop_runs();
         self.view.playing = false;
+        if let Some(m) = self.doc.movie.as_mut() {
+            m.correcting = None;
+        }
     }
 
     /// Starts a run from the current shapes if there is none; false while it is being
@@ -42,8 +45,13 @@ impl TopoApp {
             self.status.error = Some(AppError::NoImage);
             return false;
         };
+        // A taught run reads the probability map, as a taught job does.
+        let (image, params) = match self.guide_for_run() {
+            Some(g) => (std::sync::Arc::new(g.field), g.params),
+            None => (image, self.doc.params().clone()),
+        };
         let shapes = self.doc.shapes.clone();
-        let (params, compare) = (self.doc.params().clone(), self.doc.settings.compare);
+        let compare = self.doc.settings.compare;
         let large = image.width * image.height > PREPARE_IN_BACKGROUND;
         let build = move || {
             let second = compare.map(|mode| {
@@ -178,6 +186,18 @@ impl TopoApp {
 
     /// Playing, stepping and seeking.
     pub(super) fn playback(&mut self, c: Command) {
+        let correcting = self
+            .doc
+            .movie
+            .as_ref()
+            .is_some_and(|m| m.correcting.is_some());
+        if correcting && matches!(c, Command::Play | Command::Step(_) | Command::StepToEvent) {
+            self.status.notice = Some(
+                "this tracked frame's contours are open for correction (Edit, Brush); Track again re-runs the evolution"
+                    .into(),
+            );
+            return;
+        }
         match c {
             Command::Play => {
                 if self.ensure_run() {

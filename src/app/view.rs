@@ -22,6 +22,10 @@ pub struct Prefs {
     pub brush_radius: f64,
     /// The folder of the last file opened.
     pub last_dir: Option<PathBuf>,
+    /// The label the Train tool paints: 1 background, 2 object, 3 boundary, 0 erase.
+    pub train_label: u8,
+    /// The probability map shows over the image.
+    pub show_probabilities: bool,
 }
 
 impl Default for Prefs {
@@ -32,6 +36,8 @@ impl Default for Prefs {
             show_fill: true,
             brush_radius: 8.0,
             last_dir: None,
+            train_label: crate::learn::OBJECT,
+            show_probabilities: true,
         }
     }
 }
@@ -68,6 +74,8 @@ pub struct ViewState {
     /// While tracking, the movie slider follows the frame just tracked (until the user
     /// moves it).
     pub follow_tracking: bool,
+    /// A question the user must answer before work of theirs is replaced.
+    pub question: Option<Question>,
     /// Frames of the movie read so far.
     pub(super) frames: super::movie::FrameCache,
     /// The window's context, to wake it from background threads.
@@ -79,6 +87,22 @@ pub(super) struct Texture {
     pub handle: egui::TextureHandle,
     /// The image it was made from (by address) and the contrast window.
     pub of: (usize, (f32, f32)),
+}
+
+/// A question asked before work of the user's is replaced (nothing is lost without
+/// asking).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Question {
+    /// The correction of frame `frame` tracks the frames after it again, which replaces
+    /// the corrections on frames `later`.
+    Retrack {
+        /// The frame corrected.
+        frame: usize,
+        /// Later frames the user corrected.
+        later: Vec<usize>,
+    },
+    /// Tracking again from frame 0 replaces the corrections on these frames.
+    TrackAgain(Vec<usize>),
 }
 
 /// What the status bar says.

@@ -25,7 +25,7 @@
 /// Largest number of bins a feature is cut into for the split search.
 pub const BINS: usize = 64;
 
-/// Pixels predicted together (their features gathered into one buffer).
+/// Pixels predicted together: their features stay in cache across the trees.
 const CHUNK: usize = 256;
 
 /// How a forest is grown.
@@ -337,27 +337,26 @@ impl Forest {
     pub fn predict_block(&self, planes: &[&[f32]], start: usize, out: &mut [f32]) {
         let c = self.classes;
         let len = out.len() / c;
-        let nf = self.features;
-        assert!(planes.len() == nf && planes.iter().all(|p| p.len() >= start + len));
-        // Pixels a chunk at a time, their features gathered pixel by pixel: a walk then
-        // reads one small buffer, and the chunk stays in cache across all the trees.
-        let mut buf = vec![0f32; CHUNK * nf];
+        assert!(planes.len() == self.features && planes.iter().all(|p| p.len() >= start + len));
+        // A chunk of neighbouring pixels through every tree: their feature values are
+        // read where they lie, feature by feature, so the eight lanes of a walk that
+        // test one feature read one cache line, and the chunk stays in cache across
+        // the trees.
+        let mut cols: Vec<&[f32]> = Vec::with_capacity(planes.len());
         for from in (0..len).step_by(CHUNK) {
             let n = CHUNK.min(len - from);
-            for (f, plane) in planes.iter().enumerate() {
-                for (k, &v) in plane[start + from..start + from + n].iter().enumerate() {
-                    buf[k * nf + f] = v;
-                }
-            }
-            self.walk_chunk(&buf[..n * nf], &mut out[from * c..(from + n) * c]);
+            cols.clear();
+            cols.extend(planes.iter().map(|p| &p[start + from..start + from + n]));
+            self.walk_chunk(&cols, &mut out[from * c..(from + n) * c]);
         }
     }
 
-    /// Every tree over the pixels of `buf` (`features` values each), summed into `out`.
-    fn walk_chunk(&self, buf: &[f32], out: &mut [f32]) {
+    /// Every tree over the pixels of `cols` (feature f of pixel k at `cols[f][k]`),
+    /// summed into `out`.
+    fn walk_chunk(&self, cols: &[&[f32]], out: &mut [f32]) {
         const LANES: usize = 8;
-        let (c, nf) = (self.classes, self.features);
-        let n = buf.len() / nf;
+        let c = self.classes;
+        let n = out.len() / c;
         let scale = 1.0 / self.roots.len() as f32;
         let nodes = &self.nodes[..];
         for &(root, depth) in &self.roots {
@@ -373,7 +372,7 @@ impl Forest {
                         // Lanes past the chunk's end re-read its last pixel.
                         let px = p + k.min(lanes - 1);
                         let nd = nodes[at[k] as usize];
-                        let v = buf[px * nf + nd.feature as usize];
+                        let v = cols[nd.feature as usize][px];
                         let next = if v <= nd.threshold { nd.left } else { nd.right };
                         moving |= next != at[k];
                         at[k] = next;

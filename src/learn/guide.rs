@@ -12,7 +12,9 @@
 //!   objects keep their full area.
 //!
 //! The seeds ([`seeds`]) are the connected interiors of P(object) > max(P(background),
-//! P(boundary)): the boundary band cuts touching objects apart.
+//! P(boundary)): the boundary band cuts touching objects apart. A wrap around several
+//! of them starts from them ([`start_shapes`]), and a taught run has one pyramid level
+//! ([`ONE_LEVEL`]).
 
 use super::Probabilities;
 use super::{BACKGROUND, BOUNDARY, OBJECT};
@@ -42,6 +44,7 @@ impl Guide {
             polarity: Polarity::Bright,
             modality: Modality::Generic,
             local: false,
+            coarsest_side: ONE_LEVEL,
             ..params.clone()
         };
         Guide {
@@ -51,6 +54,12 @@ impl Guide {
         }
     }
 }
+
+/// The coarsest side of a taught run's pyramid: larger than any image, so the run has
+/// one level. The probabilities are already smooth, and a coarser copy would average
+/// the thin boundary band between touching objects away (docs/decisions.md,
+/// 2026-12-02: mean SEG of the instance run 0.688 with the pyramid, 0.732 without).
+pub const ONE_LEVEL: usize = 65_536;
 
 /// The image a run reads: P(object) when `keeps_topology` is false, else
 /// 1 − P(background).
@@ -70,6 +79,12 @@ pub const MIN_SEED_PIXELS: usize = 10;
 /// One seed per connected interior (4-connected pixels where the object class wins) of
 /// at least [`MIN_SEED_PIXELS`]: its outline, or a disk where the outline is too small.
 pub fn seeds(p: &Probabilities) -> Vec<Shape> {
+    interiors(p).into_iter().map(|(s, _)| s).collect()
+}
+
+/// [`seeds`], each with its most interior pixel's centre (a point inside it and in no
+/// other seed).
+pub fn interiors(p: &Probabilities) -> Vec<(Shape, Point)> {
     let (w, h) = (p.width, p.height);
     let (po, pb, pd) = (p.of(OBJECT), p.of(BACKGROUND), p.of(BOUNDARY));
     let core: Vec<bool> = (0..w * h).map(|i| po[i] > pb[i] && po[i] > pd[i]).collect();
@@ -112,12 +127,54 @@ pub fn seeds(p: &Probabilities) -> Vec<Shape> {
         .enumerate()
         .filter(|(_, (&(_, size), _))| size >= MIN_SEED_PIXELS)
         .map(|(k, (_, &at))| {
-            crate::image::outline::basin_outline(&label, k as u32 + 1, at, w, h)
+            let center = Point::new((at % w) as f64 + 0.5, (at / w) as f64 + 0.5);
+            let shape = crate::image::outline::basin_outline(&label, k as u32 + 1, at, w, h)
                 .map(Shape::Polygon)
                 .unwrap_or(Shape::Disk {
-                    center: Point::new((at % w) as f64 + 0.5, (at / w) as f64 + 0.5),
+                    center,
                     radius: (0.5 * dist.data[at] as f64).max(1.0),
-                })
+                });
+            (shape, center)
         })
         .collect()
+}
+
+/// The shapes a taught run whose topology adapts starts from: each of the user's
+/// rectangles and disks that holds two or more of the classifier's objects (their
+/// [`interiors`]' points) gives way to those objects' interiors, the others stay.
+///
+/// Why: a wrap means "everything in here", and with a classifier the objects in there
+/// are known. A front shrinking from the rectangle stops on the outside of a colony and
+/// cannot follow the thin boundary band between touching cells inwards (it would have
+/// to push a finger down each band against its own smoothing), so the boundary strokes
+/// would be lost; started from the interiors, the fronts grow out to the objects'
+/// edges and meet only where the classifier joins two objects. A click inside one
+/// object holds at most one interior and stays. Polygons stay too: the seeds a session
+/// records are polygons, so a replay starts from exactly the shapes it saved.
+///
+/// Returns the shapes and, per interior, whether it is among them.
+pub fn start_shapes(user: &[Shape], interiors: &[(Shape, Point)]) -> (Vec<Shape>, Vec<bool>) {
+    let mut taken = vec![false; interiors.len()];
+    let mut out = Vec::new();
+    for shape in user {
+        let held: Vec<usize> = match shape {
+            Shape::Polygon(_) => Vec::new(),
+            _ => {
+                let ring = shape.ring(1.0);
+                (0..interiors.len())
+                    .filter(|&k| !taken[k])
+                    .filter(|&k| crate::geometry::winding_number(&ring, interiors[k].1) != 0)
+                    .collect()
+            }
+        };
+        if held.len() >= 2 {
+            for k in held {
+                taken[k] = true;
+                out.push(interiors[k].0.clone());
+            }
+        } else {
+            out.push(shape.clone());
+        }
+    }
+    (out, taken)
 }

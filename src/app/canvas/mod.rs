@@ -6,6 +6,9 @@
 
 mod layers;
 mod tools;
+mod train;
+
+pub(in crate::app) use train::label_color;
 
 use layers::{
     compare_layer, contours_layer, image_layer, motion_layer, shapes_layer, tracks_layer,
@@ -39,6 +42,8 @@ pub struct CanvasState {
     rect: Option<Rect>,
     /// The fill of the frame recording with this stamp.
     fill_cache: Option<(u64, fill::FillMesh)>,
+    /// The probability map and strokes as textures.
+    train_textures: train::TrainTextures,
 }
 
 impl CanvasState {
@@ -139,6 +144,7 @@ pub(super) fn canvas_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
         split,
     );
     image_layer(cx, ui, &painter, view, &image);
+    train::train_layer(cx, ui, &painter, view, &image);
     if let Some(r) = right {
         compare_layer(cx, &full_painter, &painter, view, r);
     }

@@ -25,7 +25,39 @@ pub(super) fn tools_layer(
         }
     }
     if tool == Tool::Brush {
-        brush(cx, ui, response, painter, view, pointer);
+        brush(
+            cx,
+            ui,
+            response,
+            painter,
+            view,
+            pointer,
+            |from, to, radius, stroke| Command::Brush {
+                from,
+                to,
+                radius,
+                stroke,
+            },
+        );
+        return;
+    }
+    if tool == Tool::Train {
+        let label = cx.view.prefs.train_label;
+        brush(
+            cx,
+            ui,
+            response,
+            painter,
+            view,
+            pointer,
+            |from, to, radius, stroke| Command::Paint {
+                from,
+                to,
+                label,
+                radius,
+                stroke,
+            },
+        );
         return;
     }
     let cs = &mut cx.view.canvas;
@@ -101,8 +133,9 @@ fn press(cx: &mut Ctx, ui: &egui::Ui, view: View, at: Point) {
     }
 }
 
-/// The brush: a press starts a stroke (a dab where it is), a drag moves the disc, each
-/// frame's movement one command; the disc is drawn under the pointer.
+/// The brush (and the Train tool's, which paints strokes): a press starts a stroke (a
+/// dab where it is), a drag moves the disc, each frame's movement one command made by
+/// `command(from, to, radius, stroke)`; the disc is drawn under the pointer.
 fn brush(
     cx: &mut Ctx,
     ui: &egui::Ui,
@@ -110,6 +143,7 @@ fn brush(
     painter: &egui::Painter,
     view: View,
     pointer: Option<Pos2>,
+    command: impl Fn(Point, Point, f64, u32) -> Command,
 ) {
     let radius = cx.view.prefs.brush_radius;
     let cs = &mut cx.view.canvas;
@@ -126,20 +160,10 @@ fn brush(
                 .input(|i| i.pointer.press_origin())
                 .map_or(p, |s| view.to_image(s));
             cs.brush_at = Some(start);
-            cx.commands.push(Command::Brush {
-                from: start,
-                to: start,
-                radius,
-                stroke: cs.strokes,
-            });
+            cx.commands.push(command(start, start, radius, cs.strokes));
         }
         if let Some(last) = cs.brush_at.filter(|&l| dragging && l != p) {
-            cx.commands.push(Command::Brush {
-                from: last,
-                to: p,
-                radius,
-                stroke: cs.strokes,
-            });
+            cx.commands.push(command(last, p, radius, cs.strokes));
             cs.brush_at = Some(p);
         }
     }

@@ -5,7 +5,9 @@
 mod movie;
 mod side;
 mod status;
+mod train;
 
+pub(super) use movie::question_ui;
 pub(super) use side::side_panel;
 pub(super) use status::bottom_bar;
 
@@ -23,6 +25,9 @@ pub(super) fn top_bar(cx: &mut Ctx, ui: &mut egui::Ui) {
             image_ui(cx, ui);
             engine_ui(cx, ui);
         });
+        if cx.view.prefs.tool == Tool::Train {
+            ui.horizontal_wrapped(|ui| train::train_ui(cx, ui));
+        }
         // Playback on its own row, so its buttons stay put whatever the first row holds.
         ui.horizontal_wrapped(|ui| playback_ui(cx, ui));
     });
@@ -155,12 +160,13 @@ fn tools_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
         ("Select", Tool::Select, "select, drag or delete seeds and shapes"),
         ("Edit", Tool::Edit, "drag a contour by hand (merges, splits and holes happen exactly); click to select a contour, Delete removes it"),
         ("Brush", Tool::Brush, "push contours with a disc: from inside a region its boundary moves out, from outside it moves in; merges, splits and holes happen exactly"),
+        ("Train", Tool::Train, "paint strokes of background, object and boundary (keys 1–3): a pixel classifier learns them and the contours read its probability map"),
     ] {
         if ui.selectable_label(tool == t, label).on_hover_text(tip).clicked() {
             cx.send(Command::SetTool(t));
         }
     }
-    if tool == Tool::Brush {
+    if matches!(tool, Tool::Brush | Tool::Train) {
         let r = &mut cx.view.prefs.brush_radius;
         ui.add(
             egui::DragValue::new(r)

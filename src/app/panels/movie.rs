@@ -40,10 +40,32 @@ pub(in crate::app) fn movie_bar(cx: &mut Ctx, ui: &mut egui::Ui) {
             }
             None => {
                 let tip = "track every frame from frame 0 in the background: each frame starts from the contours of the frame before; touching cells never merge, a cell that pinches in two divides (seeds drawn on frame 0, or automatic seeds)";
-                if ui.button("Track movie").on_hover_text(tip).clicked() {
+                let partial = m
+                    .tracking
+                    .as_ref()
+                    .is_some_and(|t| !t.frames.is_empty() && !t.complete);
+                if partial
+                    && ui
+                        .button("Continue tracking")
+                        .on_hover_text("track on from the last frame tracked")
+                        .clicked()
+                {
+                    cx.send(Command::ContinueTrack);
+                }
+                let label = if m.tracking.is_some() {
+                    "Track again"
+                } else {
+                    "Track movie"
+                };
+                if ui.button(label).on_hover_text(tip).clicked() {
                     cx.send(Command::Track);
                 }
             }
+        }
+        if let Some(tr) = m.tracking.as_ref().filter(|t| !t.corrected.is_empty()) {
+            let frames: Vec<String> = tr.corrected.iter().map(usize::to_string).collect();
+            ui.label(format!("corrected: {}", frames.join(", ")))
+                .on_hover_text("frames you corrected by hand (Edit or Brush tool on a tracked frame); the frames after each were tracked again from it");
         }
         let tracked = m.tracking.as_ref().is_some_and(|t| !t.frames.is_empty());
         if ui
@@ -209,4 +231,57 @@ fn draw_tracks(
             );
         }
     }
+}
+
+/// The question asked before work of the user's is replaced: the corrections of later
+/// frames (tracking after a correction again), or all of them (tracking again).
+pub(in crate::app) fn question_ui(cx: &mut Ctx, ctx: &egui::Context) {
+    let Some(q) = cx.view.question.clone() else {
+        return;
+    };
+    let list = |v: &[usize]| {
+        v.iter()
+            .map(usize::to_string)
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    egui::Window::new("Replace your corrections?")
+        .collapsible(false)
+        .resizable(false)
+        .anchor(egui::Align2::CENTER_CENTER, Vec2::ZERO)
+        .show(ctx, |ui| match &q {
+            super::super::Question::Retrack { frame, later } => {
+                ui.label(format!(
+                    "Tracking the frames after frame {frame} again replaces your corrections on frames {}.",
+                    list(later)
+                ));
+                ui.horizontal(|ui| {
+                    if ui.button(format!("Track again from frame {frame}")).clicked() {
+                        cx.send(Command::Retrack(*frame));
+                    }
+                    if ui
+                        .button("Undo my edit")
+                        .on_hover_text("take back the edit of this frame; the later corrections stay")
+                        .clicked()
+                    {
+                        cx.send(Command::CloseQuestion);
+                        cx.send(Command::Undo);
+                    }
+                });
+            }
+            super::super::Question::TrackAgain(corrected) => {
+                ui.label(format!(
+                    "Tracking again from frame 0 replaces your corrections on frames {} (Undo brings them back).",
+                    list(corrected)
+                ));
+                ui.horizontal(|ui| {
+                    if ui.button("Track again from frame 0").clicked() {
+                        cx.send(Command::TrackConfirmed);
+                    }
+                    if ui.button("Keep my corrections").clicked() {
+                        cx.send(Command::CloseQuestion);
+                    }
+                });
+            }
+        });
 }

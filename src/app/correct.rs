@@ -1,0 +1,328 @@
+//! Hand corrections of a tracked movie frame (issue 26): with the Edit or Brush tool on
+//! a tracked frame, the run on screen holds that frame's contours (full resolution, the
+//! adaptive engine, so a merge can be forced and a split made); when a gesture ends the
+//! contours become the frame again and the frames after it are tracked again from them,
+//! on the background thread, as tracking would have gone on from its own contours.
+//!
+//! Identity across the correction: each corrected cell is the track of the frame's cell
+//! it covers most. A cell that covers a daughter of a division at this frame continues
+//! the mother (the wrong split undone); one cell per track continues it; two or more
+//! cells of one track are a division there (the two largest its daughters); a cell over
+//! no tracked cell starts a track. Tracks that no corrected cell continues end the frame
+//! before (a merge forced: the larger overlap keeps its track).
+//!
+//! Nothing the user did is lost without asking: tracking the frames after frame t again
+//! replaces any correction on them, so that is asked first ([`super::Question`]); each
+//! correction is one undo step with the tracking it replaced.
+
+use super::{Command, Question, Run, Tool, TopoApp};
+use crate::evolution::{regions, Evolver, Mode, Shape};
+use crate::geometry::Point;
+use crate::track::{carry::label_raster, Division, Lineage, TrackedFrame, TrackedObject, Tracker};
+use std::collections::HashMap;
+use std::sync::Arc;
+
+impl TopoApp {
+    /// With the Edit or Brush tool on a tracked frame and no run on screen: a run holding
+    /// the frame's contours, to correct them. Whether a correction run is on screen.
+    pub(super) fn begin_correction(&mut self) -> bool {
+        let Some(m) = &self.doc.movie else {
+            return false;
+        };
+        if self.doc.run.is_some() {
+            return m.correcting.is_some();
+        }
+        if !matches!(self.view.prefs.tool, Tool::Edit | Tool::Brush) {
+            return false;
+        }
+        // While the slider follows the frames being tracked, they are not for editing.
+        if self.jobs.track.is_some() && self.view.follow_tracking {
+            return false;
+        }
+        let (Some(f), Some(image)) = (m.tracked_frame(), self.doc.image.clone()) else {
+            return false;
+        };
+        let t = f.frame;
+        let shapes: Vec<Shape> = f
+            .objects
+            .iter()
+            .map(|o| Shape::Polygon(o.ring.clone()))
+            .collect();
+        if shapes.is_empty() {
+            return false;
+        }
+        let base = m
+            .tracking
+            .as_ref()
+            .and_then(|tr| tr.settings.as_ref())
+            .map_or_else(|| self.doc.params().clone(), |s| s.params.clone());
+        // Adaptive, so a merge can be forced; one level at full resolution, so the
+        // rings are the tracked ones and not a coarse grid's.
+        let params = crate::evolution::Params {
+            mode: Mode::Adaptive,
+            coarsest_side: image.width.min(image.height).clamp(8, 1 << 16),
+            ..base
+        };
+        match Evolver::new(&image, &shapes, params) {
+            Ok(ev) => {
+                self.doc.run = Some(Run::new(ev));
+                self.doc.shown = 0;
+                if let Some(m) = self.doc.movie.as_mut() {
+                    m.correcting = Some((t, 0));
+                }
+                true
+            }
+            Err(e) => {
+                self.status.error = Some(e.into());
+                false
+            }
+        }
+    }
+
+    /// Whether a correction on screen is not in the tracking yet.
+    pub(super) fn correction_waiting(&self) -> bool {
+        let (Some(m), Some(run)) = (&self.doc.movie, &self.doc.run) else {
+            return false;
+        };
+        m.correcting
+            .is_some_and(|(_, made)| run.edits().len() > made)
+    }
+
+    /// Called every frame: once the gesture has ended (no button held) the correction
+    /// goes into the tracking; with no edit, a correction run of another tool is dropped.
+    pub(super) fn poll_correction(&mut self, button_down: bool) {
+        let Some((t, _)) = self.doc.movie.as_ref().and_then(|m| m.correcting) else {
+            return;
+        };
+        if button_down || self.view.question.is_some() {
+            return;
+        }
+        if self.correction_waiting() {
+            self.commit_correction(t, false);
+        } else if !matches!(self.view.prefs.tool, Tool::Edit | Tool::Brush) {
+            self.reset_run();
+            if let Some(m) = self.doc.movie.as_mut() {
+                m.correcting = None;
+            }
+        }
+    }
+
+    /// Puts the correction of frame `t` into the tracking and tracks the frames after it
+    /// again; asks first (unless `confirmed`) when later frames hold corrections.
+    pub(super) fn commit_correction(&mut self, t: usize, confirmed: bool) {
+        self.view.question = None;
+        if !self.correction_waiting() {
+            return;
+        }
+        let Some(m) = self.doc.movie.as_ref() else {
+            return;
+        };
+        let Some(tr) = m.tracking.as_ref() else {
+            return;
+        };
+        let later: Vec<usize> = tr.corrected.range(t + 1..).copied().collect();
+        if !later.is_empty() && !confirmed {
+            self.view.question = Some(Question::Retrack { frame: t, later });
+            return;
+        }
+        let (Some(run), Some(old)) = (self.doc.run.as_ref(), tr.frames.get(t).cloned()) else {
+            return;
+        };
+        let (w, h) = m.movie.size();
+        let ev = run.evolver_at(self.doc.shown);
+        let set = ev.filtered_contours(ev.params().min_area);
+        let cells: Vec<TrackedObject> = regions(&set)
+            .into_iter()
+            .map(|r| TrackedObject {
+                track: 0,
+                ring: set.ring_points(r.id),
+                area: r.area,
+                centroid: r.centroid,
+            })
+            .collect();
+        let (frame, lineage) = corrected(&old, &tr.lineage, cells, w, h);
+        let summary = describe(&old, &frame);
+        let edits = run.edits().len();
+        let len = m.movie.len();
+        let settings = tr.settings.clone();
+        self.stop_tracking();
+        let frame = Arc::new(frame);
+        let m = self.doc.movie.as_mut().expect("checked");
+        m.correcting = Some((t, edits));
+        let tr = m.tracking.as_mut().expect("checked");
+        tr.id = super::movie::next_tracking_id();
+        tr.frames.truncate(t);
+        tr.frames.push(frame.clone());
+        tr.lineage = lineage.clone();
+        tr.corrected.retain(|&f| f < t);
+        tr.corrected.insert(t);
+        tr.complete = t + 1 == len;
+        tr.running = !tr.complete;
+        let id = tr.id;
+        match settings.filter(|_| t + 1 < len) {
+            Some(s) => {
+                self.spawn_tracking(Tracker::resume(s, lineage, &frame, w, h), t + 1, id);
+                self.status.notice = Some(format!(
+                    "frame {t} corrected ({summary}): frames {}–{} are tracked again from it",
+                    t + 1,
+                    len - 1
+                ));
+            }
+            None => self.status.notice = Some(format!("frame {t} corrected ({summary})")),
+        }
+    }
+
+    /// After Undo or Redo: a job writing into a result no longer on screen stops, and a
+    /// result brought back that was being tracked is tracked on.
+    pub(super) fn after_undo_tracking(&mut self) {
+        let (id, running) = self
+            .doc
+            .movie
+            .as_ref()
+            .and_then(|m| m.tracking.as_ref())
+            .map_or((None, false), |t| (Some(t.id), t.running && !t.complete));
+        if self
+            .jobs
+            .track
+            .as_ref()
+            .is_some_and(|j| Some(j.tracking) != id)
+        {
+            self.stop_tracking();
+        }
+        if running && self.jobs.track.is_none() {
+            self.apply_now(Command::ContinueTrack);
+        }
+    }
+}
+
+/// What a correction changed, in words.
+fn describe(old: &TrackedFrame, new: &TrackedFrame) -> String {
+    let tracks = |f: &TrackedFrame| f.objects.iter().map(|o| o.track).collect::<Vec<_>>();
+    let (a, b) = (tracks(old), tracks(new));
+    let ended: Vec<String> = a
+        .iter()
+        .filter(|t| !b.contains(t))
+        .map(u32::to_string)
+        .collect();
+    let started: Vec<String> = b
+        .iter()
+        .filter(|t| !a.contains(t))
+        .map(u32::to_string)
+        .collect();
+    let mut parts = vec![format!("{} cells", b.len())];
+    if !ended.is_empty() {
+        parts.push(format!("no longer here: {}", ended.join(", ")));
+    }
+    if !started.is_empty() {
+        parts.push(format!("new: {}", started.join(", ")));
+    }
+    parts.join("; ")
+}
+
+/// The tracked frame `old` corrected to the cells `cells` (track labels not yet given),
+/// and the lineage with it: the tracks before `old.frame` as they were, those of the
+/// frame given by the rules of the module's docs, none after.
+pub fn corrected(
+    old: &TrackedFrame,
+    lineage: &Lineage,
+    mut cells: Vec<TrackedObject>,
+    width: usize,
+    height: usize,
+) -> (TrackedFrame, Lineage) {
+    let t = old.frame;
+    // The tracks that began before t, as they were up to t − 1 (labels are given in
+    // order of birth, so they are labels 1..=K and keep them when started again).
+    let mut new = Lineage::default();
+    for tr in lineage.tracks().iter().filter(|tr| tr.first < t) {
+        let label = new.start(tr.first, tr.parent);
+        new.extend(label, tr.last.min(t - 1));
+    }
+    // Cells from left to right: new tracks are numbered so, as tracking numbers them.
+    cells.sort_by(|a, b| {
+        (a.centroid.x, a.centroid.y)
+            .partial_cmp(&(b.centroid.x, b.centroid.y))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    let was: Vec<(u32, &[Point])> = old
+        .objects
+        .iter()
+        .map(|o| (o.track, o.ring.as_slice()))
+        .collect();
+    let now: Vec<(u32, &[Point])> = cells
+        .iter()
+        .enumerate()
+        .map(|(k, c)| (k as u32 + 1, c.ring.as_slice()))
+        .collect();
+    let (was, now) = (
+        label_raster(&was, width, height),
+        label_raster(&now, width, height),
+    );
+    let mut overlap: HashMap<(u32, u32), usize> = HashMap::new();
+    for (&n, &o) in now.iter().zip(&was) {
+        if n != 0 && o != 0 {
+            *overlap.entry((n, o)).or_default() += 1;
+        }
+    }
+    // The track each cell continues: the one it covers most, a daughter born at t
+    // standing for its mother.
+    let base = |k: usize| -> Option<u32> {
+        let owner = overlap
+            .iter()
+            .filter(|((n, _), _)| *n == k as u32 + 1)
+            .max_by_key(|((_, o), c)| (**c, std::cmp::Reverse(*o)))
+            .map(|((_, o), _)| *o)?;
+        let tr = lineage.get(owner)?;
+        if tr.first < t {
+            Some(owner)
+        } else {
+            (tr.parent != 0).then_some(tr.parent)
+        }
+    };
+    let mut groups: Vec<(Option<u32>, Vec<usize>)> = Vec::new();
+    for k in 0..cells.len() {
+        let b = base(k);
+        match groups.iter_mut().find(|(g, _)| b.is_some() && *g == b) {
+            Some((_, members)) => members.push(k),
+            None => groups.push((b, vec![k])),
+        }
+    }
+    let mut frame = TrackedFrame {
+        frame: t,
+        objects: Vec::new(),
+        divisions: Vec::new(),
+        evolution_frames: old.evolution_frames,
+    };
+    let mut label_of = vec![0u32; cells.len()];
+    for (b, mut members) in groups {
+        match (b, members.len()) {
+            (Some(p), 1) => {
+                new.extend(p, t);
+                label_of[members[0]] = p;
+            }
+            (Some(p), _) => {
+                members.sort_by(|&a, &b| cells[b].area.total_cmp(&cells[a].area));
+                let children = [new.start(t, p), new.start(t, p)];
+                frame.divisions.push(Division {
+                    frame: t,
+                    parent: p,
+                    children,
+                });
+                for (i, &k) in members.iter().enumerate() {
+                    label_of[k] = children.get(i).copied().unwrap_or_else(|| new.start(t, 0));
+                }
+            }
+            (None, _) => {
+                for &k in &members {
+                    label_of[k] = new.start(t, 0);
+                }
+            }
+        }
+    }
+    for (mut c, label) in cells.into_iter().zip(label_of) {
+        c.track = label;
+        frame.objects.push(c);
+    }
+    frame.objects.sort_by_key(|o| o.track);
+    frame.divisions.sort_by_key(|d| d.parent);
+    (frame, new)
+}
