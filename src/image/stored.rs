@@ -4,9 +4,9 @@
 //! After [`super::ImageModel::prepare`] the engines read only the model; the image itself
 //! is wanted again only by outputs that draw or measure it (the overlay, the summary's
 //! mean intensity). As 32-bit floats it is a fifth of a run's peak memory (67 MB of
-//! 4096²). Images decoded from 8- and 16-bit files hold values k / 65535 or k / 255 for
-//! integer k, so they are kept as those integers: a byte or two per pixel instead of
-//! four, and [`Stored::value`] gives back the very float that was decoded (the
+//! 4096²). Images decoded from 8- and 16-bit files hold values k / 65535 (an 8-bit
+//! TIFF's k / 255 is the same float) for integer k, so they are kept as those integers:
+//! a byte or two per pixel instead of four, and [`Stored::value`] gives back the very float that was decoded (the
 //! computation the loader did, not an approximation). Anything else (float TIFFs, a
 //! caller's own field) stays as floats.
 
@@ -62,9 +62,9 @@ enum Values {
     Floats(Vec<f32>),
 }
 
-/// The divisors the loaders use (`crate::io::load` for PNG/JPEG by 16-bit luma, TIFF
-/// pages by their own bit depth).
-const SCALES: [f32; 2] = [65535.0, 255.0];
+/// The divisor of the loaders' 16-bit values (`crate::io::load`); an 8-bit TIFF's b / 255
+/// is the same float as 257·b / 65535 (one rational, correctly rounded).
+const SCALE: f32 = 65535.0;
 
 impl Stored {
     /// Keeps `field`'s values in the fewest bits that give them back exactly. The
@@ -72,19 +72,20 @@ impl Stored {
     /// beside it would be the run's peak.
     pub fn new(field: Field) -> Self {
         let (width, height, data) = (field.width, field.height, field.data);
-        let values = match SCALES.iter().find_map(|&s| fits(&data, s).map(|f| (s, f))) {
+        let scale = SCALE;
+        let values = match fits(&data, scale) {
             None => Values::Floats(data),
-            Some((scale, (all_257, _))) if scale == 65535.0 && all_257 => Values::Bytes {
+            Some((true, _)) => Values::Bytes {
                 packed: pack::<u8, 4>(data, |x| (integer(x, scale) / 257) as u8),
                 mul: 257,
                 scale,
             },
-            Some((scale, (_, true))) => Values::Bytes {
+            Some((_, true)) => Values::Bytes {
                 packed: pack::<u8, 4>(data, |x| integer(x, scale) as u8),
                 mul: 1,
                 scale,
             },
-            Some((scale, _)) => Values::Words {
+            Some(_) => Values::Words {
                 packed: pack::<u16, 2>(data, |x| integer(x, scale)),
                 scale,
             },
@@ -150,7 +151,7 @@ fn fits(data: &[f32], scale: f32) -> Option<(bool, bool)> {
         if !((0.0..=65535.0).contains(&k) && (k as u16 as f32 / scale).to_bits() == x.to_bits()) {
             return None;
         }
-        all_257 &= k as u16 % 257 == 0;
+        all_257 &= (k as u16).is_multiple_of(257);
         all_byte &= k <= 255.0;
     }
     Some((all_257, all_byte))
@@ -199,8 +200,11 @@ mod tests {
         kept(odd);
         let odd: Vec<f32> = (0..5u16).map(|k| (k * 1000) as f32 / 65535.0).collect();
         assert!(matches!(kept(odd).values, Values::Words { .. }));
+        // b / 255 and 257·b / 65535 are one rational, so one float.
         let tiff8: Vec<f32> = (0..=255u8).map(|b| b as f32 / 255.0).collect();
-        assert!(matches!(kept(tiff8).values, Values::Bytes { mul: 1, .. }));
+        assert!(matches!(kept(tiff8).values, Values::Bytes { mul: 257, .. }));
+        let dim16: Vec<f32> = (0..=255u16).map(|k| k as f32 / 65535.0).collect();
+        assert!(matches!(kept(dim16).values, Values::Bytes { mul: 1, .. }));
         let words: Vec<f32> = (0..=65535u16)
             .step_by(7)
             .map(|k| k as f32 / 65535.0)
