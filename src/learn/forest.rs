@@ -25,7 +25,7 @@
 /// Largest number of bins a feature is cut into for the split search.
 pub const BINS: usize = 64;
 
-/// Pixels predicted together (their features gathered into one buffer).
+/// Pixels predicted together: their features stay in cache across the trees.
 const CHUNK: usize = 256;
 
 /// How a forest is grown.

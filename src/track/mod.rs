@@ -17,10 +17,18 @@
 //!   dropped as clutter) ends its track; the pieces of a split are its two children,
 //!   whose parent is the track that split (a piece under [`MIN_DAUGHTER_SHARE`] of the
 //!   largest is a shred, not a daughter, and is dropped);
-//! - cells entering or appearing where no contour is are picked up by the frame's
-//!   automatic seeds that lie wholly outside every tracked cell of the frame before.
+//! - cells entering or appearing where no contour is are picked up by automatic seeds
+//!   that lie wholly outside every cell of the frame, placed only when it is time: every
+//!   [`TrackSettings::seed_every`] frames, or when the object area no cell covers grew
+//!   by the smallest cell kept since the last look (the seeds cost twice the rest of a
+//!   frame, and most frames have no new cell); the frame then evolves again with the
+//!   seeds, its cells starting where they settled;
+//! - a seed where a cell was the frame before, on ground that cell's contour has left,
+//!   is a daughter that came apart from it (a condensing nucleus pinches one daughter
+//!   off dimly, and the contour lets go of it instead of splitting): the mother divided,
+//!   into the piece under her contour and that seed's cell.
 //!
-//! Memory holds the frame being tracked and the contours of the one before.
+//! Memory holds the frame being tracked and the contours and labels of the one before.
 
 pub mod carry;
 pub mod lineage;
@@ -30,13 +38,25 @@ pub use lineage::{Division, Lineage, Track};
 
 use crate::evolution::{find_seeds, EvolveError, Evolver, Field, Mode, Params, Shape};
 use crate::geometry::Point;
+use crate::image::ImageModel;
 use crate::topology::TopologyEvent;
-use carry::{label_raster, ring_origins, shrunk, uncovered};
+use carry::{
+    claim, drop_shreds, free_object, label_raster, labels_of, majority, ordered, regroup,
+    ring_origins, settled, shrunk, uncovered, Origin,
+};
+use std::sync::Arc;
 
 /// Smallest area of a split's smaller piece, as a share of the larger, for the split to
 /// be a division (daughters of a division are of one size; a shred torn off by noise
 /// is not).
 pub const MIN_DAUGHTER_SHARE: f64 = 0.2;
+
+/// Smallest area of a daughter that came apart from its mother's contour (see
+/// [`carry::claim`]), as a share of the larger: it shows only partly in its first
+/// frame (the mother condensed and pinched it off dimly), so a quarter of
+/// [`MIN_DAUGHTER_SHARE`]; it is a seed of its own, found where the mother was, not a
+/// shred of her contour.
+pub const MIN_CLAIMED_SHARE: f64 = 0.05;
 
 /// How tracking runs.
 #[derive(Clone, Debug, PartialEq)]
@@ -53,6 +73,10 @@ pub struct TrackSettings {
     /// pyramid of its parameters): 1 is the full resolution only, each more level
     /// carries a contour over a move twice as large.
     pub levels: usize,
+    /// Look for new cells at least every this many frames, and on any frame where the
+    /// object area no cell covers grew since the last look by the smallest cell kept
+    /// (`params.min_area`).
+    pub seed_every: usize,
 }
 
 impl TrackSettings {
@@ -67,6 +91,7 @@ impl TrackSettings {
             auto_seeds: true,
             new_cells: true,
             levels: 2,
+            seed_every: 8,
         }
     }
 }
@@ -97,6 +122,13 @@ pub struct TrackedFrame {
     pub evolution_frames: usize,
 }
 
+/// What one evolution of a frame gave: per shape, its pieces (largest first); the
+/// frames it ran; the image model it read (`None` when nothing was evolved).
+type Evolved = (Vec<Vec<TrackedObject>>, usize, Option<Arc<ImageModel>>);
+
+/// A frame's shapes' origins, their pieces, and the frames evolved.
+type WithNew = (Vec<Origin>, Vec<Vec<TrackedObject>>, usize);
+
 /// Tracks a movie frame by frame ([`Tracker::step`]).
 #[derive(Clone, Debug)]
 pub struct Tracker {
@@ -108,6 +140,10 @@ pub struct Tracker {
     /// Their label raster.
     labels: Vec<u32>,
     frame: usize,
+    /// The frame by which the automatic seeds run again at the latest.
+    next_seeding: usize,
+    /// Object pixels no cell covered after the last frame that placed seeds.
+    residual: usize,
 }
 
 impl Tracker {
@@ -120,6 +156,8 @@ impl Tracker {
             live: Vec::new(),
             labels: Vec::new(),
             frame: 0,
+            next_seeding: 0,
+            residual: 0,
         }
     }
 
@@ -141,47 +179,41 @@ impl Tracker {
             self.labels = vec![0; w * h];
         }
         let mut shapes: Vec<Shape> = Vec::new();
-        let mut owners: Vec<Option<u32>> = Vec::new();
+        let mut origins: Vec<Origin> = Vec::new();
         for (track, ring) in &self.live {
             shapes.push(shrunk(ring, self.settings.shrink));
-            owners.push(Some(*track));
+            origins.push(Origin::Carried(*track));
         }
         if t == 0 {
             for s in std::mem::take(&mut self.init) {
                 shapes.push(s);
-                owners.push(None);
+                origins.push(Origin::New);
+            }
+            if self.settings.auto_seeds || shapes.is_empty() {
+                let p = &self.settings.params;
+                let seeds = ordered(find_seeds(image, p.polarity, p.modality));
+                origins.extend(seeds.iter().map(|_| Origin::New));
+                shapes.extend(seeds);
             }
         }
-        let seeding = if t == 0 {
-            self.settings.auto_seeds || shapes.is_empty()
+        let evolved = self.evolve(image, &shapes)?;
+        let (origins, pieces, evolution_frames) = if t > 0 && self.settings.new_cells {
+            self.with_new_cells(image, origins, evolved)?
         } else {
-            self.settings.new_cells
+            if t == 0 {
+                self.residual = leftover(&evolved, w, h);
+                self.next_seeding = self.settings.seed_every.max(1);
+            }
+            (origins, evolved.0, evolved.1)
         };
-        if seeding {
-            let p = &self.settings.params;
-            let mut seeds: Vec<Shape> = find_seeds(image, p.polarity, p.modality)
-                .into_iter()
-                .filter(|s| t == 0 || uncovered(s, &self.labels, w, h))
-                .collect();
-            // New tracks are numbered left to right.
-            seeds.sort_by(|a, b| {
-                let (a, b) = (a.center(), b.center());
-                (a.x, a.y)
-                    .partial_cmp(&(b.x, b.y))
-                    .unwrap_or(std::cmp::Ordering::Equal)
-            });
-            owners.extend(seeds.iter().map(|_| None));
-            shapes.extend(seeds);
-        }
-        let (pieces, evolution_frames) = self.evolve(image, &shapes)?;
         let mut frame = TrackedFrame {
             frame: t,
             objects: Vec::new(),
             divisions: Vec::new(),
             evolution_frames,
         };
-        for (owner, group) in owners.iter().zip(pieces) {
-            self.settle(*owner, group, &mut frame);
+        for (owner, group) in claim(&origins, pieces) {
+            self.settle(owner, group, &mut frame);
         }
         frame.objects.sort_by_key(|o| o.track);
         self.live = frame
@@ -199,16 +231,69 @@ impl Tracker {
         Ok(frame)
     }
 
+    /// A frame's evolution `evolved` from the cells before (`origins`), run again with
+    /// automatic seeds where no cell is when it is time to look for new cells: every
+    /// [`TrackSettings::seed_every`] frames, when the object area no cell covers grew by
+    /// the smallest cell kept since the last look, or when no cell is left. Returns the
+    /// origins, the pieces per origin and the frames evolved.
+    fn with_new_cells(
+        &mut self,
+        image: &Field,
+        origins: Vec<Origin>,
+        evolved: Evolved,
+    ) -> Result<WithNew, EvolveError> {
+        let (t, w, h) = (self.frame, image.width, image.height);
+        let found = labels_of(&evolved.0, w, h);
+        let free = evolved.2.as_deref().map(|m| free_object(m, &found));
+        let grown =
+            free.is_none_or(|f| f as f64 > self.residual as f64 + self.settings.params.min_area);
+        if !(grown || t >= self.next_seeding) {
+            return Ok((origins, evolved.0, evolved.1));
+        }
+        self.next_seeding = t + self.settings.seed_every.max(1);
+        let seeds = self.new_seeds(image, &found);
+        if seeds.is_empty() {
+            self.residual = free.unwrap_or(0);
+            return Ok((origins, evolved.0, evolved.1));
+        }
+        // Again with the seeds, the cells starting where they settled, so a seed on
+        // ground a cell's contour left is not inside that cell's start.
+        let (mut shapes, mut all) = settled(&origins, &evolved.0);
+        for (s, o) in seeds {
+            shapes.push(s);
+            all.push(o);
+        }
+        let again = self.evolve(image, &shapes)?;
+        self.residual = leftover(&again, w, h);
+        let (all, pieces) = regroup(all, again.0);
+        Ok((all, pieces, evolved.1 + again.1))
+    }
+
+    /// The frame's automatic seeds that no cell of this frame (`found`) covers, each with
+    /// where it came from: a daughter of the track whose cell covered most of it the
+    /// frame before, else new. New tracks are numbered left to right.
+    fn new_seeds(&self, image: &Field, found: &[u32]) -> Vec<(Shape, Origin)> {
+        let (w, h) = (image.width, image.height);
+        let p = &self.settings.params;
+        ordered(find_seeds(image, p.polarity, p.modality))
+            .into_iter()
+            .filter(|s| uncovered(s, found, w, h))
+            .map(|s| {
+                let o = match majority(&s, &self.labels, w, h) {
+                    0 => Origin::New,
+                    x => Origin::Daughter(x),
+                };
+                (s, o)
+            })
+            .collect()
+    }
+
     /// Evolves from `shapes`; returns, per shape, the pieces it ended as (largest first)
     /// and the frames the evolution ran.
-    fn evolve(
-        &self,
-        image: &Field,
-        shapes: &[Shape],
-    ) -> Result<(Vec<Vec<TrackedObject>>, usize), EvolveError> {
+    fn evolve(&self, image: &Field, shapes: &[Shape]) -> Result<Evolved, EvolveError> {
         let mut pieces: Vec<Vec<TrackedObject>> = vec![Vec::new(); shapes.len()];
         if shapes.is_empty() {
-            return Ok((pieces, 0));
+            return Ok((pieces, 0, None));
         }
         let mut params = self.settings.params.clone();
         if self.frame > 0 {
@@ -217,7 +302,7 @@ impl Tracker {
         }
         let mut ev = match Evolver::new(image, shapes, params) {
             Ok(ev) => ev,
-            Err(EvolveError::EmptyInit) => return Ok((pieces, 0)),
+            Err(EvolveError::EmptyInit) => return Ok((pieces, 0, None)),
             Err(e) => return Err(e),
         };
         let mut origin: std::collections::HashMap<u32, usize> =
@@ -242,13 +327,8 @@ impl Tracker {
                 });
             }
         }
-        for g in &mut pieces {
-            g.sort_by(|a, b| b.area.total_cmp(&a.area));
-            if let Some(big) = g.first().map(|o| o.area) {
-                g.retain(|o| o.area >= MIN_DAUGHTER_SHARE * big);
-            }
-        }
-        Ok((pieces, ev.frames()))
+        pieces.iter_mut().for_each(drop_shreds);
+        Ok((pieces, ev.frames(), Some(ev.image().clone())))
     }
 
     /// Gives the pieces of one shape their tracks: the same track for one piece of a
@@ -282,4 +362,12 @@ impl Tracker {
             frame.objects.push(o);
         }
     }
+}
+
+/// Object pixels no cell of `evolved` covers (see [`free_object`]).
+fn leftover(evolved: &Evolved, w: usize, h: usize) -> usize {
+    evolved
+        .2
+        .as_deref()
+        .map_or(0, |m| free_object(m, &labels_of(&evolved.0, w, h)))
 }
