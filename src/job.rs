@@ -18,10 +18,16 @@
 use crate::evolution::{
     find_seeds, Edit, EvolveError, Evolver, Field, Mode, Params, Polarity, Shape,
 };
+use crate::image::Stored;
 use crate::io::{load_image_page, ImageInfo, LoadError, PixelSize};
 use crate::learn::guide::{self, Guide};
 use crate::learn::{Taught, Teach, TeachError};
+use std::borrow::Cow;
 use std::path::PathBuf;
+
+/// What [`Job::start_from`] returns: the evolver, the shapes it started from, what
+/// taught it, and the image kept compactly when it was given.
+type Started = (Evolver, Vec<Shape>, Option<Taught>, Option<Stored>);
 
 /// Where a run stops.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -61,8 +67,8 @@ pub struct Job {
 pub struct JobRun {
     /// The evolver at the stop, small regions and holes dropped (`Params::min_area`).
     pub ev: Evolver,
-    /// The image (the job's page).
-    pub image: Field,
+    /// The image (the job's page), kept compactly once the model is prepared.
+    pub image: Stored,
     /// The shapes the evolution started from, automatic seeds included.
     pub shapes: Vec<Shape>,
     /// The pixel size: the job's, or the file's.
@@ -182,9 +188,16 @@ impl Job {
         &self,
         image: &Field,
     ) -> Result<(Evolver, Vec<Shape>, Option<Taught>), JobError> {
+        let (ev, shapes, taught, _) = self.start_from(Cow::Borrowed(image))?;
+        Ok((ev, shapes, taught))
+    }
+
+    /// [`Job::start_taught`]; given the image itself, it also returns it kept compactly
+    /// ([`Evolver::keeping`]).
+    fn start_from(&self, image: Cow<Field>) -> Result<Started, JobError> {
         let mut shapes = self.shapes.clone();
         let taught = match &self.teach {
-            Some(t) => Some(t.apply(image, &crate::io::folder::file_name(&self.image))?),
+            Some(t) => Some(t.apply(&image, &crate::io::folder::file_name(&self.image))?),
             None => None,
         };
         let guide = taught
@@ -208,7 +221,7 @@ impl Job {
                     .zip(taken)
                     .filter_map(|((s, _), t)| (!t).then_some(s))
                     .collect(),
-                None => find_seeds(image, self.params.polarity, self.params.modality),
+                None => find_seeds(&image, self.params.polarity, self.params.modality),
             };
             if found.is_empty() && shapes.is_empty() {
                 return Err(JobError::NoSeeds {
@@ -218,11 +231,25 @@ impl Job {
             }
             shapes.extend(found);
         }
-        let ev = match &guide {
-            Some(g) => Evolver::new(&g.field, &shapes, g.params.clone())?,
-            None => Evolver::new(image, &shapes, self.params.clone())?,
+        let (ev, kept) = match (&guide, image) {
+            (Some(g), image) => {
+                let ev = Evolver::new(&g.field, &shapes, g.params.clone())?;
+                // The run reads the probabilities: the image is kept as it is.
+                let kept = match image {
+                    Cow::Owned(i) => Some(Stored::new(i)),
+                    Cow::Borrowed(_) => None,
+                };
+                (ev, kept)
+            }
+            (None, Cow::Owned(image)) => {
+                let (ev, kept) = Evolver::keeping(image, &shapes, self.params.clone())?;
+                (ev, Some(kept))
+            }
+            (None, Cow::Borrowed(image)) => {
+                (Evolver::new(image, &shapes, self.params.clone())?, None)
+            }
         };
-        Ok((ev, shapes, taught))
+        Ok((ev, shapes, taught, kept))
     }
 
     /// Steps `s` through the job: each edit at its frame (or at the run's end if it ended
@@ -247,7 +274,8 @@ impl Job {
 
     /// Runs the job on its image, already loaded (`image`, `info`: [`Job::load`]).
     pub fn run_on(&self, image: Field, info: ImageInfo) -> Result<JobRun, JobError> {
-        let (mut ev, shapes, taught) = self.start_taught(&image)?;
+        let (mut ev, shapes, taught, image) = self.start_from(Cow::Owned(image))?;
+        let image = image.expect("an owned image is kept");
         self.drive(&mut ev)?;
         ev.filter_clutter();
         Ok(JobRun {

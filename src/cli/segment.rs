@@ -88,7 +88,7 @@ pub(super) fn write_outputs(
     files: OutputFiles,
     wanted: &[(Format, &Path)],
     out: &Outputs,
-    image: &crate::evolution::Field,
+    image: &dyn crate::image::Gray,
     extra: Vec<Vec<u8>>,
 ) -> Result<(), Failure> {
     let mut bytes = wanted

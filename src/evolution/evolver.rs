@@ -26,7 +26,7 @@ use super::schedule::Schedule;
 use crate::contours::{ContourId, ContourSet};
 use crate::geometry::{Aabb, Point};
 use crate::image::field::{Field, Pyramid};
-use crate::image::{ImageModel, IntensityModel};
+use crate::image::{ImageModel, IntensityModel, Stored};
 use crate::shape::Shape;
 use crate::topology::TopologyEvent;
 use std::sync::Arc;
@@ -58,15 +58,32 @@ pub struct Evolver {
 impl Evolver {
     /// Prepares the image and the initial rings for `params.mode`'s engine.
     pub fn new(image: &Field, init: &[Shape], params: Params) -> Result<Self, EvolveError> {
-        check_params(&params)?;
+        Self::check(image, init, &params)?;
+        let model = Arc::new(ImageModel::prepare(image, &params.model_params(), init));
+        Self::with_image(model, init, params)
+    }
+
+    /// [`Evolver::new`] on an image it may keep compactly for the outputs
+    /// ([`ImageModel::prepare_keeping`]).
+    pub fn keeping(
+        image: Field,
+        init: &[Shape],
+        params: Params,
+    ) -> Result<(Self, Stored), EvolveError> {
+        Self::check(&image, init, &params)?;
+        let (model, kept) = ImageModel::prepare_keeping(image, &params.model_params(), init);
+        Ok((Self::with_image(Arc::new(model), init, params)?, kept))
+    }
+
+    /// What both constructors refuse before preparing anything.
+    fn check(image: &Field, init: &[Shape], params: &Params) -> Result<(), EvolveError> {
+        check_params(params)?;
         if init.is_empty() {
             return Err(EvolveError::EmptyInit);
         }
         check_shapes(init, image.width, image.height)?;
-        check_params_for(&params, image.width, image.height)?;
-        check_memory(image.width, image.height)?;
-        let model = Arc::new(ImageModel::prepare(image, &params.model_params(), init));
-        Self::with_image(model, init, params)
+        check_params_for(params, image.width, image.height)?;
+        check_memory(image.width, image.height)
     }
 
     /// The run over an image already prepared as `params` say (see

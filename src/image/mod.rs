@@ -7,7 +7,8 @@
 //! scale ([`noise`], [`scale`]), the local decision levels ([`local`]), the medians
 //! under the user's shapes ([`hints`]); and the automatic seeds built from them: the
 //! distance transform ([`distance`]), persistent maxima ([`maxima`]), the seeds' basins
-//! ([`seeds`], [`outline`]) and their cuts at notches ([`declump`]).
+//! ([`seeds`], [`outline`]) and their cuts at notches ([`declump`]); what a run keeps
+//! of the image for its outputs ([`stored`]).
 //!
 //! [`model::ImageModel`] gathers what an engine reads, prepared once
 //! ([`ImageModel::prepare`]): the evolver and the automatic seeds both start from it.
@@ -31,6 +32,7 @@ pub mod outline;
 mod patch;
 pub mod scale;
 pub mod seeds;
+pub mod stored;
 
 pub use field::{Field, Pyramid};
 pub use intensity::{IntensityModel, Polarity};
@@ -38,3 +40,4 @@ pub use local::Decision;
 pub use modality::Modality;
 pub use model::{ImageModel, LevelView, ModelKind, ModelParams, Probe};
 pub use seeds::find_seeds;
+pub use stored::{Gray, Stored};

@@ -23,6 +23,7 @@ use super::intensity::{IntensityModel, Polarity};
 use super::local::{decision_field, Decision, LevelRule};
 use super::modality::{for_modality, Modality};
 use super::scale::object_scale;
+use super::stored::Stored;
 use crate::geometry::Point;
 use crate::shape::Shape;
 
@@ -89,16 +90,33 @@ impl ImageModel {
     /// none) give the hints of [`super::hints`]: the object and background medians, and
     /// in phase contrast the background level the halo is clipped to.
     pub fn prepare(image: &Field, params: &ModelParams, shapes: &[Shape]) -> Self {
+        Self::finish(Self::pyramid(image, params, shapes), params, shapes)
+    }
+
+    /// [`ImageModel::prepare`], keeping the image compactly ([`Stored`]): it is packed as
+    /// soon as its pyramid is built, before the decision levels are, so the floats and
+    /// the full model are never held at once (docs/decisions.md, 2026-12-02).
+    pub fn prepare_keeping(image: Field, params: &ModelParams, shapes: &[Shape]) -> (Self, Stored) {
+        let pyramid = Self::pyramid(&image, params, shapes);
+        let kept = Stored::new(image);
+        (Self::finish(pyramid, params, shapes), kept)
+    }
+
+    /// The pyramid of the image as its kind is seen.
+    fn pyramid(image: &Field, params: &ModelParams, shapes: &[Shape]) -> Pyramid {
         // Phase contrast: the halo reads as background, clipped to the level of the band a
         // wrap shows.
         let band = (params.modality == Modality::PhaseContrast)
             .then(|| hints(image, shapes).1)
             .flatten();
         let seen = for_modality(image, params.polarity, params.modality, band);
-        let pyramid = Pyramid::new(&seen, params.coarsest_side, PYRAMID_LEVELS);
-        // A phase-contrast image's clipped copy is not needed past its pyramid.
-        drop(seen);
+        Pyramid::new(&seen, params.coarsest_side, PYRAMID_LEVELS)
+    }
+
+    /// The model over `pyramid`: the two-class model and the decision levels.
+    fn finish(pyramid: Pyramid, params: &ModelParams, shapes: &[Shape]) -> Self {
         let fine = &pyramid.levels[0].image;
+        let (width, height) = (fine.width, fine.height);
         let (object_hint, background_hint) = hints(fine, shapes);
         let global = IntensityModel::learn(fine, params.polarity, object_hint, background_hint);
         let (radius, decision) = if params.local {
@@ -117,8 +135,8 @@ impl ImageModel {
             global,
             decision,
             radius,
-            width: image.width,
-            height: image.height,
+            width,
+            height,
         }
     }
 

@@ -3,7 +3,8 @@
 //! and the rows of `summary.csv` (one per object, with its mean intensity).
 
 use super::{Format, OutputFiles, Outputs};
-use crate::evolution::{regions, Field};
+use crate::evolution::regions;
+use crate::image::Gray;
 use crate::job::Job;
 use std::path::{Path, PathBuf};
 
@@ -79,13 +80,13 @@ pub fn output_stems(images: &[PathBuf]) -> Result<Vec<String>, String> {
 
 /// One CSV row per region: the measurements of `Outputs::csv` and the mean intensity
 /// (0–1 of the image's full scale) over the region's pixels.
-pub fn summary_rows(name: &str, out: &Outputs, image: &Field) -> Vec<String> {
+pub fn summary_rows(name: &str, out: &Outputs, image: &dyn Gray) -> Vec<String> {
     let labels = out.labels();
     let regions = regions(out.set);
     let n = regions.len();
     let (mut sum, mut count) = (vec![0f64; n + 1], vec![0usize; n + 1]);
-    for (&l, &v) in labels.iter().zip(&image.data) {
-        sum[l as usize] += v as f64;
+    for (i, &l) in labels.iter().enumerate() {
+        sum[l as usize] += image.value(i) as f64;
         count[l as usize] += 1;
     }
     let quoted = super::export::csv_quoted(name);

@@ -24,7 +24,8 @@
 //! contours frame by frame, so a replay equals the run that saved the session (the
 //! JSON output is byte-identical; tests/cli.rs checks it).
 
-use crate::evolution::{Edit, EvolveError, Field, Params, Shape};
+use crate::evolution::{Edit, EvolveError, Params, Shape};
+use crate::image::Gray;
 use crate::io::PixelSize;
 use crate::job::{Job, JobError, JobRun, Stop};
 use crate::learn::{Classifier, Strokes, Teach};
@@ -140,7 +141,7 @@ impl Session {
     /// given; [`Session::stored_at`] makes it relative to the session file).
     pub fn new(
         path: &Path,
-        image: &Field,
+        image: &dyn Gray,
         shapes: Vec<Shape>,
         params: Params,
         frames: usize,
@@ -151,8 +152,8 @@ impl Session {
             version: VERSION,
             image: ImageRef {
                 path: path.to_path_buf(),
-                width: image.width,
-                height: image.height,
+                width: image.size().0,
+                height: image.size().1,
                 crc32: file_crc32(path)?,
             },
             shapes,

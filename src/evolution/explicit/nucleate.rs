@@ -51,10 +51,10 @@ pub fn nucleate(set: &mut ContourSet, view: &LevelView, scale: f64) -> Vec<Topol
         .collect();
     let score = |i: usize| view.pixel_score(i);
     // Inside, and clearly background (scored only inside; listed, as they are few).
-    let mut inside = vec![false; w * h];
+    let mut inside = Bits::new(w * h);
     let mut listed = Vec::new();
     fill_even_odd(&rings, w, h, |i| {
-        inside[i] = true;
+        inside.set(i, true);
         if score(i) <= -NUCLEATE_SCORE {
             listed.push(i);
         }
@@ -66,23 +66,23 @@ pub fn nucleate(set: &mut ContourSet, view: &LevelView, scale: f64) -> Vec<Topol
             && y > 0
             && x + 1 < w
             && y + 1 < h
-            && (y - 1..=y + 1).all(|yy| (x - 1..=x + 1).all(|xx| inside[yy * w + xx]))
+            && (y - 1..=y + 1).all(|yy| (x - 1..=x + 1).all(|xx| inside.get(yy * w + xx)))
     };
     listed.retain(|&i| deep(i));
     // The inside mask becomes the candidates' (one image-sized mask, not two).
     let mut candidate = inside;
-    candidate.fill(false);
+    candidate.clear();
     for &i in &listed {
-        candidate[i] = true;
+        candidate.set(i, true);
     }
     let mut events = Vec::new();
     let mut stack = Vec::new();
     for &start in &listed {
-        if !candidate[start] {
+        if !candidate.get(start) {
             continue;
         }
         // One 8-connected piece, cleared as it is visited.
-        candidate[start] = false;
+        candidate.set(start, false);
         stack.push(start);
         let (mut count, mut best, mut best_score) = (0usize, start, f64::INFINITY);
         while let Some(i) = stack.pop() {
@@ -92,8 +92,8 @@ pub fn nucleate(set: &mut ContourSet, view: &LevelView, scale: f64) -> Vec<Topol
                 (best, best_score) = (i, s);
             }
             for j in neighbours8(i, w, h) {
-                if candidate[j] {
-                    candidate[j] = false;
+                if candidate.get(j) {
+                    candidate.set(j, false);
                     stack.push(j);
                 }
             }
@@ -107,6 +107,32 @@ pub fn nucleate(set: &mut ContourSet, view: &LevelView, scale: f64) -> Vec<Topol
         }
     }
     events
+}
+
+/// One bit per pixel: the masks here are image-sized and live at the run's peak (a
+/// `Vec<bool>` is eight times the memory).
+struct Bits(Vec<u64>);
+
+impl Bits {
+    fn new(n: usize) -> Self {
+        Bits(vec![0; n.div_ceil(64)])
+    }
+    #[inline]
+    fn get(&self, i: usize) -> bool {
+        self.0[i / 64] >> (i % 64) & 1 == 1
+    }
+    #[inline]
+    fn set(&mut self, i: usize, on: bool) {
+        let bit = 1u64 << (i % 64);
+        if on {
+            self.0[i / 64] |= bit;
+        } else {
+            self.0[i / 64] &= !bit;
+        }
+    }
+    fn clear(&mut self) {
+        self.0.fill(0);
+    }
 }
 
 /// A square hole ring of half-diagonal `r` around `centre` (clockwise: a hole), unless

@@ -4,7 +4,7 @@
 //! it, so a format has one default name everywhere.
 
 use super::Outputs;
-use crate::evolution::Field;
+use crate::image::Gray;
 use std::path::Path;
 
 /// An output format.
@@ -98,7 +98,12 @@ impl Format {
     /// The bytes of this output of `out` (drawn on `image` for the overlay); `path` is
     /// where they go: a label image is TIFF unless `path` ends in something else than
     /// .tif/.tiff (then PNG).
-    pub fn render(self, out: &Outputs, image: &Field, path: &Path) -> Result<Vec<u8>, ExportError> {
+    pub fn render(
+        self,
+        out: &Outputs,
+        image: &dyn Gray,
+        path: &Path,
+    ) -> Result<Vec<u8>, ExportError> {
         Ok(match self {
             Format::Json => out.json().into_bytes(),
             Format::Mask => out.mask_png(),

@@ -43,13 +43,13 @@ impl Outputs<'_> {
 
     /// The image in gray with each region tinted in its own colour and every ring (holes
     /// too) drawn on top, as PNG bytes.
-    pub fn overlay_png(&self, image: &crate::evolution::Field) -> Vec<u8> {
+    pub fn overlay_png(&self, image: &dyn crate::image::Gray) -> Vec<u8> {
         let (w, h) = (self.width, self.height);
         let labels = self.labels();
         let colour = |k: u32| PALETTE[(k as usize - 1) % PALETTE.len()];
         let mut rgb = vec![0u8; w * h * 3];
         for i in 0..w * h {
-            let g = image.data[i].clamp(0.0, 1.0) * 255.0;
+            let g = image.value(i).clamp(0.0, 1.0) * 255.0;
             let px = if labels[i] == 0 {
                 [g; 3]
             } else {
