@@ -71,15 +71,7 @@ impl StrokesIn {
     pub fn read(self, width: usize, height: usize) -> Result<Strokes, StrokeError> {
         match self {
             StrokesIn::Path(p) => Strokes::read(&p, width, height),
-            StrokesIn::Array(w, h, labels) => {
-                Strokes {
-                    width: w,
-                    height: h,
-                    labels: Vec::new(),
-                }
-                .check_size(width, height)?;
-                Strokes::new(w, h, labels)
-            }
+            StrokesIn::Array(w, h, labels) => Strokes::for_image(w, h, labels, width, height),
         }
     }
 }

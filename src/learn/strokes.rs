@@ -102,7 +102,18 @@ impl Strokes {
     /// Reads a stroke PNG and checks it against a `width` × `height` image.
     pub fn read(path: &Path, width: usize, height: usize) -> Result<Self, StrokeError> {
         let (w, h, labels) = decode(path)?;
-        // The size first: strokes of another image are that, whatever they hold.
+        Strokes::for_image(w, h, labels, width, height)
+    }
+
+    /// [`Strokes::new`] for a `width` × `height` image: the size is checked first
+    /// (strokes of another image are that, whatever they hold), then the labels.
+    pub fn for_image(
+        w: usize,
+        h: usize,
+        labels: Vec<u8>,
+        width: usize,
+        height: usize,
+    ) -> Result<Self, StrokeError> {
         Strokes {
             width: w,
             height: h,
