@@ -14,7 +14,7 @@
 //! was and the move is refused with [`MoveError::Held`]. Guessing the events from the
 //! crossings alone is not safe: the property test found a move that crosses another
 //! object where the region grows and yet reports only a split. Putting back is local
-//! ([`Undo`]): a move changes only the rings it crosses, its own and those inside its
+//! (`Undo`): a move changes only the rings it crosses, its own and those inside its
 //! motion region, so only those are recorded before it (vertex ids, links, positions,
 //! ring entries) with the free list, and restored after; a copy of the whole set cost
 //! 15 % of a tracked frame, where two objects press on each other in most frames. So the
@@ -120,13 +120,16 @@ impl ContourSet {
     }
 }
 
+/// A ring a move touches, as it was: its id, its entry and its vertices (id, position) in
+/// ring order from the anchor.
+type TouchedRing = (u32, Ring, Vec<(u32, Point)>);
+
 /// What a planned move may change, as it was: the rings it touches (its own, those it
 /// crosses, those inside its motion region) vertex by vertex, and the set's allocation
 /// state. A move allocates and frees vertex slots and ring ids but changes no vertex of
 /// another ring, so these suffice to put the set back.
 struct Undo {
-    /// Per touched ring: its id, its entry and its vertices in ring order from the anchor.
-    rings: Vec<(u32, Ring, Vec<(u32, Point)>)>,
+    rings: Vec<TouchedRing>,
     free: Vec<u32>,
     slots: usize,
     ring_slots: usize,
