@@ -65,6 +65,7 @@ pub fn run_moves_under(
                 .map_err(|w| format!("seed {seed} step {step}: broad phase missed edge {w}"))?;
             Some(q)
         };
+        let layout_before = (policy != TopologyPolicy::ADAPTIVE).then(|| layout(&set));
         let free = (policy != TopologyPolicy::ADAPTIVE).then(|| {
             let mut copy = set.clone();
             let r = match q {
@@ -85,6 +86,9 @@ pub fn run_moves_under(
         if let Some((copy, r)) = free {
             compare_with_free(&set, &result, &copy, &r, policy).map_err(at)?;
         }
+        if matches!(result, Err(MoveError::Held(_))) && layout_before != Some(layout(&set)) {
+            return Err(at("a held move left the set's layout changed".into()));
+        }
         match &result {
             Ok(ev) => events += ev.len() as u64,
             Err(MoveError::Held(_)) => held += 1,
@@ -95,6 +99,23 @@ pub fn run_moves_under(
             .map_err(at)?;
     }
     Ok((events, held))
+}
+
+/// What a held move must leave exactly as it was, beyond the rings' points: each ring's
+/// id, anchor and vertex ids in order, and which vertex slots are free.
+type Layout = (Vec<(u32, Vec<u32>)>, Vec<u32>, usize);
+
+fn layout(set: &ContourSet) -> Layout {
+    let rings = set
+        .contour_ids()
+        .map(|id| {
+            let r = set.rings[id.0 as usize].expect("live ring");
+            (id.0, set.walk(r.anchor).collect())
+        })
+        .collect();
+    let mut free = set.free.clone();
+    free.sort_unstable();
+    (rings, free, set.vertex_capacity())
 }
 
 /// Whether the broad phase offers every edge that brute force finds meeting `b` (`Err`:
