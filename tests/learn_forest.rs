@@ -1,5 +1,5 @@
-//! Our random forest against smartcore's, grown alike (50 trees, depth 10, √F features
-//! per split, bootstrap) on the same data: the predicted classes agree, both learn the
+//! Our random forest against smartcore's, grown alike (the default trees and depth, √F
+//! features per split, bootstrap) on the same data: the predicted classes agree, both learn the
 //! rule, and ours is deterministic in its seed.
 
 use smartcore::ensemble::random_forest_classifier::{
@@ -50,8 +50,8 @@ fn predictions_agree_with_smartcore() {
     };
     let labels: Vec<u32> = y.iter().map(|&c| c as u32).collect();
     let params = RandomForestClassifierParameters::default()
-        .with_n_trees(50)
-        .with_max_depth(10)
+        .with_n_trees(p.trees as u16)
+        .with_max_depth(p.max_depth as u16)
         .with_seed(0);
     let theirs = RandomForestClassifier::fit(&dm(&x, 2000), &labels, params).unwrap();
     let their_labels: Vec<u32> = theirs.predict(&dm(&tx, 5000)).unwrap();

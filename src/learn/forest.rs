@@ -7,17 +7,22 @@
 //! measured here, linfa-ensemble's not); and
 //! prediction is the cost that repeats (every image, every stroke in the app): on the
 //! 512² fluorescence case with 49 features and 50 trees of depth ≤ 10, smartcore 0.7
-//! predicts the labels in 0.28 CPU seconds, ours the probabilities in 0.13
-//! (docs/decisions.md, `LEARN_BENCH_SMARTCORE=1 cargo bench --bench learn -- IMAGE
-//! STROKES`). Two choices make ours fast:
+//! predicted the labels in 0.28 CPU seconds, ours the probabilities in 0.13
+//! (docs/decisions.md 2026-12-01, `LEARN_BENCH_SMARTCORE=1 cargo bench --bench learn --
+//! IMAGE STROKES`; the default is 32 trees since, see [`ForestParams`]). Two choices
+//! make ours fast:
 //! - training bins each feature into at most [`BINS`] quantile intervals of the
 //!   training values (as LightGBM and scikit-learn's histogram forests do), so a split
 //!   search is a histogram per feature rather than a sort; thresholds are the midpoints
 //!   between training values, as CART's;
 //! - prediction walks a chunk of pixels through one tree at a time, eight neighbouring
-//!   pixels in lockstep, every leaf looping to itself until all eight have arrived: the
-//!   walks' loads overlap, the one branch is predictable (neighbours mostly end in
-//!   leaves of one depth), and the chunk's features stay in cache across the trees.
+//!   pixels in lockstep, every leaf looping to itself until all eight have arrived
+//!   (a child's index says whether it is a leaf, so arriving costs no extra round;
+//!   trees here are shallow: 1.1 and 2.5 splits per pixel and tree on two public
+//!   cases; left or right is an index, not a branch, since no predictor can guess
+//!   it): the walks' loads overlap, the one branch is predictable (neighbours
+//!   mostly end in leaves of one depth), and the chunk's features stay in cache
+//!   across the trees.
 //!
 //! tests/learn_forest.rs checks the predictions against smartcore's forest trained on
 //! the same data.
@@ -40,11 +45,13 @@ pub struct ForestParams {
 }
 
 impl Default for ForestParams {
-    /// scikit-learn's trainable segmentation as `shared/tools/peer.py` runs it: 50 trees
-    /// of depth at most 10.
+    /// 32 trees of depth at most 10. scikit-learn's trainable segmentation, as
+    /// `shared/tools/peer.py` runs it, grows 50; 32 gave the same scores with the
+    /// strokes of every public real case (mean Dice and SEG within +0.003) in a third
+    /// less prediction time (docs/decisions.md, 2026-12-02).
     fn default() -> Self {
         ForestParams {
-            trees: 50,
+            trees: 32,
             max_depth: 10,
             seed: 0,
         }
@@ -63,6 +70,27 @@ pub struct Node {
     pub left: u32,
     /// The right child.
     pub right: u32,
+}
+
+/// The flag of a node index that is a leaf's, in [`Walk`].
+const LEAF: u32 = 1 << 31;
+
+/// A node as the prediction walks it: its children's indices carry [`LEAF`] when they
+/// are leaves, so the walk sees that all its lanes have arrived without reading a node.
+#[derive(Clone, Copy)]
+struct Step {
+    feature: u32,
+    threshold: f32,
+    /// Left (values ≤ threshold), right.
+    child: [u32; 2],
+}
+
+/// The forest laid out for prediction: its steps, each tree's root (with [`LEAF`]) and
+/// the leaves' class distributions already divided by the number of trees.
+struct Walk {
+    steps: Vec<Step>,
+    roots: Vec<u32>,
+    values: Vec<f32>,
 }
 
 /// A trained forest.
@@ -342,55 +370,87 @@ impl Forest {
         // read where they lie, feature by feature, so the eight lanes of a walk that
         // test one feature read one cache line, and the chunk stays in cache across
         // the trees.
+        let walk = self.walk();
         let mut cols: Vec<&[f32]> = Vec::with_capacity(planes.len());
         for from in (0..len).step_by(CHUNK) {
             let n = CHUNK.min(len - from);
             cols.clear();
             cols.extend(planes.iter().map(|p| &p[start + from..start + from + n]));
-            self.walk_chunk(&cols, &mut out[from * c..(from + n) * c]);
+            self.walk_chunk(&cols, &mut out[from * c..(from + n) * c], &walk);
         }
     }
 
     /// Every tree over the pixels of `cols` (feature f of pixel k at `cols[f][k]`),
     /// summed into `out`.
-    fn walk_chunk(&self, cols: &[&[f32]], out: &mut [f32]) {
+    fn walk_chunk(&self, cols: &[&[f32]], out: &mut [f32], walk: &Walk) {
         const LANES: usize = 8;
         let c = self.classes;
         let n = out.len() / c;
-        let scale = 1.0 / self.roots.len() as f32;
-        let nodes = &self.nodes[..];
-        for &(root, depth) in &self.roots {
+        let steps = &walk.steps[..];
+        for (&(_, depth), &start) in self.roots.iter().zip(&walk.roots) {
             for p in (0..n).step_by(LANES) {
                 let lanes = LANES.min(n - p);
-                let mut at = [root; LANES];
+                let mut at = [start; LANES];
                 // Eight walks in lockstep (a leaf loops to itself): the loads overlap,
-                // and the one branch, "all eight in leaves", is as predictable as
-                // neighbouring pixels are alike.
+                // and the one branch, "all eight in leaves" (their LEAF bits), is as
+                // predictable as neighbouring pixels are alike.
                 for _ in 0..depth {
-                    let mut moving = false;
+                    if at.iter().fold(LEAF, |all, &a| all & a) != 0 {
+                        break;
+                    }
                     for k in 0..LANES {
                         // Lanes past the chunk's end re-read its last pixel.
                         let px = p + k.min(lanes - 1);
-                        let nd = nodes[at[k] as usize];
-                        let v = cols[nd.feature as usize][px];
-                        let next = if v <= nd.threshold { nd.left } else { nd.right };
-                        moving |= next != at[k];
-                        at[k] = next;
-                    }
-                    if !moving {
-                        break;
+                        let s = steps[(at[k] & !LEAF) as usize];
+                        let v = cols[s.feature as usize][px];
+                        // Values ≤ the threshold go left, NaN right: the sign of
+                        // t − v (exact: zero only when they are equal), an index
+                        // rather than a branch that no predictor could guess.
+                        let right = ((s.threshold - v).to_bits() >> 31) | v.is_nan() as u32;
+                        at[k] = s.child[right as usize];
                     }
                 }
                 for (k, &a) in at.iter().enumerate().take(lanes) {
-                    let o = self.leaf_of[a as usize] as usize;
+                    let o = self.leaf_of[(a & !LEAF) as usize] as usize;
                     for (d, v) in out[(p + k) * c..(p + k + 1) * c]
                         .iter_mut()
-                        .zip(&self.leaf_values[o..o + c])
+                        .zip(&walk.values[o..o + c])
                     {
-                        *d += v * scale;
+                        *d += v;
                     }
                 }
             }
+        }
+    }
+
+    /// The forest as [`Forest::walk_chunk`] reads it.
+    fn walk(&self) -> Walk {
+        assert!(self.nodes.len() < LEAF as usize, "node count");
+        let mark = |i: u32| {
+            let leaf = self
+                .nodes
+                .get(i as usize)
+                .is_some_and(|nd| nd.left == i && nd.right == i);
+            if leaf {
+                i | LEAF
+            } else {
+                i
+            }
+        };
+        let scale = 1.0 / self.roots.len() as f32;
+        Walk {
+            steps: self
+                .nodes
+                .iter()
+                .map(|nd| Step {
+                    feature: nd.feature,
+                    threshold: nd.threshold,
+                    child: [mark(nd.left), mark(nd.right)],
+                })
+                .collect(),
+            roots: self.roots.iter().map(|&(r, _)| mark(r)).collect(),
+            // The product each tree adds, as `v * scale` in the walk would give it.
+            values: self.leaf_values.iter().map(|v| v * scale).collect(),
         }
     }
 
