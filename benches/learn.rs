@@ -37,6 +37,13 @@ fn timed<T>(runs: usize, mut f: impl FnMut() -> T) -> (f64, f64, T) {
     (cpu[runs / 2], wall[runs / 2], last.expect("runs ≥ 1"))
 }
 
+/// FNV-1a of the values' bits: equal digests, identical results (byte for byte).
+fn digest<'a>(values: impl IntoIterator<Item = &'a f32>) -> u64 {
+    values.into_iter().fold(0xcbf2_9ce4_8422_2325, |h, v| {
+        (h ^ v.to_bits() as u64).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
 fn smartcore_predict(features: &Features, strokes: &Strokes, p: &ForestParams) -> (f64, f64) {
     use smartcore::ensemble::random_forest_classifier::{
         RandomForestClassifier, RandomForestClassifierParameters,
@@ -103,6 +110,11 @@ fn bench_one(name: &str, width: usize, height: usize, image: &[f32], strokes: &S
         p.trees
     );
     println!("  predict              cpu {pc:.3} s  wall {pw:.3} s");
+    println!(
+        "  digests: features {:016x}, probabilities {:016x}",
+        digest(features.planes.iter().flatten()),
+        digest(&prob.data)
+    );
     println!(
         "  per 512²: features + predict cpu {:.3} s, wall {:.3} s",
         (fc + pc) * scale,

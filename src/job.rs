@@ -15,9 +15,7 @@
 //! the same job on the same image gives the same contours frame by frame; a session
 //! ([`crate::io::session`]) is a job plus a checked reference to its image.
 
-use crate::evolution::{
-    find_seeds, Edit, EvolveError, Evolver, Field, Mode, Params, Polarity, Shape,
-};
+use crate::evolution::{find_seeds, Edit, EvolveError, Evolver, Field, Params, Polarity, Shape};
 use crate::image::Stored;
 use crate::io::{load_image_page, ImageInfo, LoadError, PixelSize};
 use crate::learn::guide::{self, Guide};
@@ -204,13 +202,13 @@ impl Job {
             .as_ref()
             .map(|t| Guide::new(t.probabilities.clone(), &self.params));
         let found = match &guide {
-            Some(g) if self.auto_seeds || self.params.mode == Mode::Adaptive => {
+            Some(g) if self.auto_seeds || guide::gives_way(self.params.mode) => {
                 guide::interiors(&g.probabilities)
             }
             _ => Vec::new(),
         };
         let mut taken = vec![false; found.len()];
-        if guide.is_some() && self.params.mode == Mode::Adaptive {
+        if guide.is_some() && guide::gives_way(self.params.mode) {
             (shapes, taken) = guide::start_shapes(&shapes, &found);
         }
         if self.auto_seeds {

@@ -257,3 +257,31 @@ fn a_classifier_saves_and_loads_onto_another_image() {
     wait_for_map(&mut h2);
     assert!(prob(&h2, OBJECT, 90, 64) > 0.5);
 }
+
+/// A taught run takes the command line's engine (track) until the user chooses one, and
+/// a wrap gives way to the map's objects as a taught job's does: one contour per disk.
+#[test]
+fn a_taught_wrap_runs_as_the_command_line_runs_it() {
+    use topocontour::evolution::Mode;
+    let (mut h, _) = train_app("wrap.png");
+    paint_both(&mut h);
+    wait_for_map(&mut h);
+    h.state_mut().send(Command::WrapBorder(4.0));
+    h.step();
+    run_to_end(&mut h);
+    assert_eq!(h.state().doc.params().mode, Mode::Track);
+    assert_eq!(contours_now(&h), 2);
+    assert!(
+        !logged(&h, |e| matches!(
+            e,
+            topocontour::TopologyEvent::Split { .. }
+        )),
+        "the wrap gave way to the two disks: nothing had to split"
+    );
+    // The user's choice stands.
+    h.state_mut().send(Command::SetMode(Mode::Adaptive));
+    h.step();
+    run_to_end(&mut h);
+    assert_eq!(h.state().doc.params().mode, Mode::Adaptive);
+    assert_eq!(contours_now(&h), 2);
+}

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{bin, refused, s, workdir};
+use common::{bin, refused, run_ok, s, workdir};
 use std::path::Path;
 use topocontour::check::{strokes_for, touching_rods};
 use topocontour::contours::measure::regions;
@@ -126,4 +126,58 @@ fn bad_strokes_get_one_line_and_exit_2() {
     write_gray(&odd, vec![9; W * H]);
     run(&odd, "the value 9");
     run(&dir.join("missing.png"), "cannot read the strokes");
+}
+
+/// A taught run with no `--mode` gets the engine that keeps objects apart
+/// (`Mode::for_init`): from a wrap or from found seeds, every rod comes out alone, where
+/// the adaptive engine merges some; a `--mode` given wins, and an untaught run stays
+/// adaptive.
+#[test]
+fn a_taught_run_keeps_objects_apart_by_default() {
+    let dir = workdir("learn", "default");
+    let (img, labels) = touching_rods(W, H, 24, 8);
+    let image = dir.join("rods.png");
+    write_gray(
+        &image,
+        img.iter().map(|v| (v * 255.0).round() as u8).collect(),
+    );
+    let strokes = dir.join("strokes.png");
+    write_gray(&strokes, strokes_for(&labels, W, H, 8, true));
+    let rods = labels.iter().copied().max().unwrap() as usize;
+    let run = |init: &[&str], extra: &[&str]| -> (String, usize) {
+        let json = dir.join("o.json");
+        run_ok(
+            bin()
+                .args(["segment", s(&image), "--object", "dark"])
+                .args(init)
+                .args(extra)
+                .args(["--json", s(&json)]),
+        );
+        let doc: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        let outer = doc["contours"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|c| !c["hole"].as_bool().unwrap())
+            .count();
+        (doc["mode"].as_str().unwrap().to_string(), outer)
+    };
+    let train = ["--train", s(&strokes)];
+    for init in [&["--wrap", "2"][..], &["--auto-seeds"][..]] {
+        let (mode, outer) = run(init, &train);
+        eprintln!("{init:?}: {outer} objects for {rods} rods in mode {mode}");
+        assert_eq!(mode, "track");
+        assert!(
+            outer * 10 >= rods * 9 && outer <= rods + 2,
+            "{outer} of {rods}"
+        );
+    }
+    let (mode, _) = run(
+        &["--wrap", "2"],
+        &[&train[..], &["--mode", "adaptive"]].concat(),
+    );
+    assert_eq!(mode, "adaptive");
+    let (mode, _) = run(&["--wrap", "2"], &[]);
+    assert_eq!(mode, "adaptive");
 }

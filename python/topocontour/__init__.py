@@ -130,7 +130,7 @@ def segment(
     auto_seeds: bool = False,
     object: str = "dark",
     modality: Optional[str] = None,
-    mode: str = "adaptive",
+    mode: Optional[str] = None,
     classifier: Optional[Union[Classifier, "os.PathLike[str]", str]] = None,
     strokes: Optional[Union["os.PathLike[str]", str, Any]] = None,
     name: Optional[str] = None,
@@ -140,7 +140,9 @@ def segment(
     those samples reads) or the path of an image file.
 
     ``seeds`` are (x, y, r) disks, ``wrap`` a margin, ``rects`` (x0, y0, x1, y1)
-    rectangles, ``auto_seeds`` one seed per object found; ``classifier`` a
+    rectangles, ``auto_seeds`` one seed per object found; ``mode`` the engine (``None``:
+    the command line's default, ``"track"`` for a taught run, else ``"adaptive"``);
+    ``classifier`` a
     :class:`Classifier` (from :func:`train`) or a classifier file, ``strokes`` a label
     array of the image's shape or a strokes PNG (0 none, 1 background, 2 object, 3
     boundary) that a classifier is trained on for this run; ``params`` are the other

@@ -26,7 +26,8 @@ import numpy as np
 import topocontour
 
 OBJECTS = ("dark", "bright")
-MODES = ("adaptive", "preserve", "implicit", "track")
+# "default": as the command line chooses (track for a taught run, else adaptive).
+MODES = ("default", "adaptive", "preserve", "implicit", "track")
 # One run at a time: the engine already uses the cores it may, and napari stays free.
 _POOL = ThreadPoolExecutor(max_workers=1, thread_name_prefix="topocontour")
 
@@ -78,12 +79,12 @@ def _image_2d(data):
 
 
 def segment_layers(image, *, seeds=None, strokes=None, auto_seeds=False, object="dark",
-                   mode="adaptive", name="image", **params):
+                   mode=None, name="image", **params):
     """Segments `image` (a 2-D array) and gives napari's layer data tuples: the objects
     as a Shapes layer of polygons and as a Labels layer. `seeds`: a list of (x, y, r)
     disks; `strokes`: a label array of the image's shape (1 background, 2 object, 3
     boundary)."""
-    kwargs = dict(object=object, mode=mode, **params)
+    kwargs = dict(object=object, mode=None if mode == "default" else mode, **params)
     if seeds:
         kwargs["seeds"] = seeds
     if auto_seeds:
@@ -128,7 +129,7 @@ def segment_widget():
                    mode={"choices": MODES})
     def segment(image: napari.layers.Image, seeds: napari.layers.Points = None,
                 strokes: napari.layers.Labels = None, auto_seeds: bool = False,
-                object: str = "dark", mode: str = "adaptive",
+                object: str = "dark", mode: str = "default",
                 ) -> Future[List[napari.types.LayerDataTuple]]:
         pts = None
         if seeds is not None and len(seeds.data):

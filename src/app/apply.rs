@@ -126,7 +126,10 @@ impl TopoApp {
                     Command::SetModality(m) => s.params.modality = m,
                     Command::SetOpenHoles(on) => s.params.open_holes = on,
                     Command::SetPolarity(p) => s.params.polarity = p,
-                    Command::SetMode(mode) => s.params.mode = mode,
+                    Command::SetMode(mode) => {
+                        s.params.mode = mode;
+                        s.mode_chosen = true;
+                    }
                     Command::SetCompare(mode) => s.compare = mode,
                     Command::SetBroadPhase(kind) => s.params.broad_phase = kind,
                     _ => unreachable!(),

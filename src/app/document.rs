@@ -52,6 +52,9 @@ pub struct Settings {
     pub compare: Option<Mode>,
     /// Contrast window (low, high) of the image on screen.
     pub contrast: (f32, f32),
+    /// Whether the user (or a session) chose the engine; until then a taught run takes
+    /// the command line's default for it ([`Mode::for_init`]).
+    pub mode_chosen: bool,
 }
 
 impl Default for Settings {
@@ -60,6 +63,7 @@ impl Default for Settings {
             params: Params::default(),
             compare: None,
             contrast: (0.0, 1.0),
+            mode_chosen: false,
         }
     }
 }

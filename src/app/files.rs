@@ -252,6 +252,7 @@ impl TopoApp {
         }
         let doc = &mut self.doc;
         doc.settings.params = job.params.clone();
+        doc.settings.mode_chosen = true;
         doc.shapes = job.shapes.clone();
         doc.train = match (&s.strokes, &s.classifier) {
             (Some(st), _) => super::Training::of_strokes(st),

@@ -45,12 +45,15 @@ impl TopoApp {
             self.status.error = Some(AppError::NoImage);
             return false;
         };
-        // A taught run reads the probability map, as a taught job does.
-        let (image, params) = match self.guide_for_run() {
-            Some(g) => (std::sync::Arc::new(g.field), g.params),
-            None => (image, self.doc.params().clone()),
+        // A taught run reads the probability map, and starts from the shapes, as a
+        // taught job does.
+        let (image, params, shapes) = match self.guide_for_run() {
+            Some(g) => {
+                let shapes = crate::learn::guide::taught_shapes(&self.doc.shapes, &g);
+                (std::sync::Arc::new(g.field), g.params, shapes)
+            }
+            None => (image, self.doc.params().clone(), self.doc.shapes.clone()),
         };
-        let shapes = self.doc.shapes.clone();
         let compare = self.doc.settings.compare;
         let large = image.width * image.height > PREPARE_IN_BACKGROUND;
         let build = move || {

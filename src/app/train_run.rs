@@ -115,6 +115,16 @@ impl TopoApp {
         let taught = self.taught_now();
         self.doc.taught = taught.as_ref().map(|(k, _)| *k);
         let (_, t) = taught?;
+        let s = &mut self.doc.settings;
+        if !s.mode_chosen {
+            // As the command line: a taught run keeps the classifier's objects apart.
+            s.params.mode = crate::evolution::Mode::for_init(true);
+            s.mode_chosen = true;
+            self.status.notice = Some(format!(
+                "taught run: engine {} keeps touching cells apart (choose Adaptive to let them merge)",
+                s.params.mode.name()
+            ));
+        }
         Some(Guide::new(t.probabilities, self.doc.params()))
     }
 

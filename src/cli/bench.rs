@@ -58,7 +58,7 @@ pub fn bench(b: &BenchArgs) -> Result<(), Failure> {
     for d in dirs {
         let mut args = SegmentArgs::from_case(&d)?;
         args.run.broad_phase = b.broad_phase;
-        args.run.mode = b.mode;
+        args.run.mode = Some(b.mode);
         let mut times = Vec::new();
         let (mut frames, mut contours) = (0, 0);
         for _ in 0..b.runs.max(1) {

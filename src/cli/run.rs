@@ -40,9 +40,10 @@ pub struct RunSettings {
     /// Whether objects are darker or brighter than the background.
     #[arg(long, value_enum)]
     pub object: Polarity,
-    /// What may happen to the objects' shapes as the contours move.
-    #[arg(long, default_value = "adaptive", value_parser = choices::<Mode>(MODES))]
-    pub mode: Mode,
+    /// What may happen to the objects' shapes as the contours move [default: track for a
+    /// run taught by --train or --classifier, else adaptive].
+    #[arg(long, value_parser = choices::<Mode>(MODES))]
+    pub mode: Option<Mode>,
     /// The kind of image: phase contrast treats the bright halo as background.
     #[arg(long, value_enum, default_value = "generic")]
     pub modality: Modality,
@@ -86,7 +87,7 @@ impl RunSettings {
             classifier: None,
             rect: Vec::new(),
             object,
-            mode: Mode::Adaptive,
+            mode: None,
             modality: Modality::Generic,
             local_radius: None,
             no_new_holes: false,
@@ -226,7 +227,9 @@ pub fn init_shapes(a: &RunSettings, width: usize, height: usize) -> Result<Vec<S
 /// Params for the settings.
 pub fn params_for(a: &RunSettings) -> Result<Params, Failure> {
     let mut p = Params {
-        mode: a.mode,
+        mode: a
+            .mode
+            .unwrap_or_else(|| Mode::for_init(a.train.is_some() || a.classifier.is_some())),
         polarity: a.object,
         modality: a.modality,
         broad_phase: a.broad_phase,

@@ -3,7 +3,7 @@
 
 use super::run::{evolve, RunSettings};
 use super::{bad, note, Failure};
-use crate::evolution::{Evolver, Modality, Polarity};
+use crate::evolution::{Evolver, Modality, Mode, Polarity};
 use crate::io::folder::file_name;
 use crate::io::session::Session;
 use crate::io::{Format, OutputFiles, Outputs};
@@ -127,9 +127,14 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
     let name = file_name(&a.image);
     let out = Outputs::of(ev, ev.contours(), &name).with_pixel_size(run.pixel.clone());
     if out.held > 0 {
-        // The user asked for fixed topology; say where it mattered.
+        // The engine held topology (asked for, or the default for seeds); say where it
+        // mattered.
+        let what = match out.params.mode {
+            Mode::Track => "kept the seeds' objects apart (splits allowed)",
+            _ => "kept the initial topology",
+        };
         note(&format!(
-            "note: mode {} kept the initial topology ({} contours); fronts were held apart at {} places where adaptive mode would merge, split or close holes",
+            "note: mode {} {what} ({} contours); fronts were held apart at {} places where adaptive mode would merge, split or close holes",
             out.params.mode.name(),
             ev.contours().contour_count(),
             out.held

@@ -15,8 +15,8 @@
 //! already put in subtracted from σ², then bilinearly upsampled. docs/decisions.md
 //! records what that costs in accuracy and saves in time.
 
-use super::filters::{along_columns, along_rows, kernel, reduce, upsample, Order, Plane};
-use super::filters::{for_rows, REDUCE_VARIANCE};
+use super::filters::{along_columns, along_columns_many, along_rows, kernel, reduce};
+use super::filters::{for_rows_many, upsample, Order, Plane, REDUCE_VARIANCE};
 
 /// The scales of ilastik's default feature selection, pixels.
 pub const SCALES: [f64; 6] = [0.7, 1.0, 1.6, 3.5, 5.0, 10.0];
@@ -172,17 +172,6 @@ pub fn eigenvalues(a: f32, b: f32, c: f32) -> (f32, f32) {
     (mean + d, mean - d)
 }
 
-/// The plane of `f` at every pixel index.
-fn per_pixel(w: usize, h: usize, f: impl Fn(usize) -> f32 + Sync) -> Plane {
-    let mut p = Plane::zeros(w, h);
-    for_rows(&mut p.data, w, |y, row| {
-        for (x, o) in row.iter_mut().enumerate() {
-            *o = f(y * w + x);
-        }
-    });
-    p
-}
-
 /// The [`PER_SCALE`] planes of scale `sigma` (fine pixels) on `base`, a grid reduced
 /// `level` times whose grain is `grain` fine px²; derivatives per fine pixel.
 fn scale_features(base: &Plane, sigma: f64, level: u32, grain: f64) -> Vec<Plane> {
@@ -197,38 +186,74 @@ fn scale_features(base: &Plane, sigma: f64, level: u32, grain: f64) -> Vec<Plane
     let rows_g = along_rows(base, &g);
     let rows_d = along_rows(base, &d);
     let rows_dd = along_rows(base, &dd);
-    let smooth = along_columns(&rows_g, &g);
+    // The column passes that read one row-filtered plane, together.
+    let [smooth, iy, iyy] = planes(along_columns_many(&rows_g, &[&g, &d, &dd]));
+    let [ix, ixy] = planes(along_columns_many(&rows_d, &[&g, &d]));
+    let ixx = along_columns(&rows_dd, &g);
     let dog_k = kernel(on_grid(0.66 * sigma), Order::Smooth);
     let narrow = along_columns(&along_rows(base, &dog_k), &dog_k);
     let (s1, s2) = ((1.0 / f) as f32, (1.0 / (f * f)) as f32);
-    let iy = along_columns(&rows_g, &d);
-    let iyy = along_columns(&rows_g, &dd);
-    let ix = along_columns(&rows_d, &g);
-    let ixy = along_columns(&rows_d, &d);
-    let ixx = along_columns(&rows_dd, &g);
     let (w, h) = (base.width, base.height);
     // The structure tensor: products of the gradient at σ, averaged at σ/2 (vigra's
     // inner and outer scales as ilastik passes them).
     let outer = kernel((0.5 * sigma / f).max(0.3), Order::Smooth);
-    let avg = |p: Plane| along_columns(&along_rows(&p, &outer), &outer);
-    let sxx = avg(per_pixel(w, h, |i| ix.data[i] * ix.data[i] * s2));
-    let sxy = avg(per_pixel(w, h, |i| ix.data[i] * iy.data[i] * s2));
-    let syy = avg(per_pixel(w, h, |i| iy.data[i] * iy.data[i] * s2));
-    let st = |i: usize| eigenvalues(sxx.data[i], sxy.data[i], syy.data[i]);
-    let hess = |i: usize| eigenvalues(ixx.data[i] * s2, ixy.data[i] * s2, iyy.data[i] * s2);
-    let dog = per_pixel(w, h, |i| smooth.data[i] - narrow.data[i]);
-    let gradient = per_pixel(w, h, |i| {
-        s1 * (ix.data[i] * ix.data[i] + iy.data[i] * iy.data[i]).sqrt()
+    let mut products = [Plane::zeros(w, h), Plane::zeros(w, h), Plane::zeros(w, h)];
+    per_row(&mut products, |y, rows| {
+        let [xx, xy, yy] = rows else {
+            unreachable!("three planes")
+        };
+        let (a, b) = (&ix.data[y * w..(y + 1) * w], &iy.data[y * w..(y + 1) * w]);
+        for x in 0..w {
+            xx[x] = a[x] * a[x] * s2;
+            xy[x] = a[x] * b[x] * s2;
+            yy[x] = b[x] * b[x] * s2;
+        }
     });
-    let log = per_pixel(w, h, |i| s2 * (ixx.data[i] + iyy.data[i]));
-    vec![
-        smooth,
-        gradient,
-        log,
-        dog,
-        per_pixel(w, h, |i| st(i).0),
-        per_pixel(w, h, |i| st(i).1),
-        per_pixel(w, h, |i| hess(i).0),
-        per_pixel(w, h, |i| hess(i).1),
-    ]
+    let [sxx, sxy, syy] = products.map(|p| along_columns(&along_rows(&p, &outer), &outer));
+    let mut out: [Plane; PER_SCALE - 1] = std::array::from_fn(|_| Plane::zeros(w, h));
+    // Every plane but the smoothing, in one pass over the filtered planes.
+    per_row(&mut out, |y, rows| {
+        let [gradient, log, dog, st_max, st_min, hess_max, hess_min] = rows else {
+            unreachable!("seven planes")
+        };
+        let (ix, iy, ixx, ixy, iyy) = (
+            row(&ix, y),
+            row(&iy, y),
+            row(&ixx, y),
+            row(&ixy, y),
+            row(&iyy, y),
+        );
+        let (sm, na) = (row(&smooth, y), row(&narrow, y));
+        let (sxx, sxy, syy) = (row(&sxx, y), row(&sxy, y), row(&syy, y));
+        for x in 0..w {
+            gradient[x] = s1 * (ix[x] * ix[x] + iy[x] * iy[x]).sqrt();
+            log[x] = s2 * (ixx[x] + iyy[x]);
+            dog[x] = sm[x] - na[x];
+            (st_max[x], st_min[x]) = eigenvalues(sxx[x], sxy[x], syy[x]);
+            (hess_max[x], hess_min[x]) = eigenvalues(ixx[x] * s2, ixy[x] * s2, iyy[x] * s2);
+        }
+    });
+    let mut all = vec![smooth];
+    all.extend(out);
+    all
+}
+
+/// Row `y` of `p`.
+fn row(p: &Plane, y: usize) -> &[f32] {
+    &p.data[y * p.width..(y + 1) * p.width]
+}
+
+/// The planes of a `Vec` of known length as an array.
+fn planes<const N: usize>(v: Vec<Plane>) -> [Plane; N] {
+    v.try_into().expect("one plane per kernel")
+}
+
+/// Calls `f(y, rows)` for every row of the (equal-sized) planes `out`.
+fn per_row<F>(out: &mut [Plane], f: F)
+where
+    F: Fn(usize, &mut [&mut [f32]]) + Sync + Send,
+{
+    let w = out.first().map_or(1, |p| p.width);
+    let mut rows: Vec<&mut [f32]> = out.iter_mut().map(|p| p.data.as_mut_slice()).collect();
+    for_rows_many(&mut rows, w, f);
 }

@@ -115,6 +115,48 @@ where
     }
 }
 
+/// Calls `f(y, rows)` for every row index `y` of the planes `outs` (rows of `width`, all
+/// of one size), `rows[k]` being row `y` of `outs[k]`; in parallel with rayon, as
+/// [`for_rows`]. One pass writing several planes reads its inputs once.
+pub fn for_rows_many<F>(outs: &mut [&mut [f32]], width: usize, f: F)
+where
+    F: Fn(usize, &mut [&mut [f32]]) + Sync + Send,
+{
+    let width = width.max(1);
+    let height = outs.first().map_or(0, |o| o.len() / width);
+    assert!(
+        outs.iter().all(|o| o.len() == width * height),
+        "plane sizes"
+    );
+    let band = (16_384 / width).max(1);
+    // Per band of rows, each plane's part of it.
+    let mut bands: Vec<Vec<&mut [f32]>> = (0..height.div_ceil(band))
+        .map(|_| Vec::with_capacity(outs.len()))
+        .collect();
+    for o in outs.iter_mut() {
+        for (b, part) in o.chunks_mut(width * band).enumerate() {
+            bands[b].push(part);
+        }
+    }
+    let run = |(b, mut parts): (usize, Vec<&mut [f32]>)| {
+        let n = parts.first().map_or(0, |p| p.len() / width);
+        for k in 0..n {
+            let mut rows: Vec<&mut [f32]> = parts
+                .iter_mut()
+                .map(|p| &mut p[k * width..(k + 1) * width])
+                .collect();
+            f(b * band + k, &mut rows);
+        }
+    };
+    #[cfg(feature = "cli")]
+    {
+        use rayon::prelude::*;
+        bands.into_par_iter().enumerate().for_each(run);
+    }
+    #[cfg(not(feature = "cli"))]
+    bands.into_iter().enumerate().for_each(run);
+}
+
 /// Correlates every row of `src` with `k` (reflected borders).
 pub fn along_rows(src: &Plane, k: &[f32]) -> Plane {
     let (w, h) = (src.width, src.height);
@@ -122,9 +164,11 @@ pub fn along_rows(src: &Plane, k: &[f32]) -> Plane {
     let mut out = Plane::zeros(w, h);
     for_rows(&mut out.data, w, |y, row| {
         let line = &src.data[y * w..(y + 1) * w];
-        let padded: Vec<f32> = (0..w + 2 * r)
-            .map(|i| line[reflect(i as isize - r as isize, w)])
-            .collect();
+        // The row with its reflected margins: only the 2r margin pixels need `reflect`.
+        let mut padded = Vec::with_capacity(w + 2 * r);
+        padded.extend((0..r).map(|i| line[reflect(i as isize - r as isize, w)]));
+        padded.extend_from_slice(line);
+        padded.extend((0..r).map(|i| line[reflect((w + i) as isize, w)]));
         // Tap by tap over the whole row: the inner loop vectorises.
         for (j, &kj) in k.iter().enumerate() {
             for (o, &p) in row.iter_mut().zip(&padded[j..j + w]) {
@@ -137,14 +181,23 @@ pub fn along_rows(src: &Plane, k: &[f32]) -> Plane {
 
 /// Correlates every column of `src` with `k` (reflected borders).
 pub fn along_columns(src: &Plane, k: &[f32]) -> Plane {
+    along_columns_many(src, &[k]).pop().expect("one kernel")
+}
+
+/// Correlates every column of `src` with each of `ks` (reflected borders), in one pass:
+/// the source rows are read once for all kernels. Each result is [`along_columns`]'s.
+pub fn along_columns_many(src: &Plane, ks: &[&[f32]]) -> Vec<Plane> {
     let (w, h) = (src.width, src.height);
-    let r = k.len() as isize / 2;
-    let mut out = Plane::zeros(w, h);
-    for_rows(&mut out.data, w, |y, row| {
-        for (j, &kj) in k.iter().enumerate() {
-            let sy = reflect(y as isize + j as isize - r, h);
-            for (o, &s) in row.iter_mut().zip(&src.data[sy * w..(sy + 1) * w]) {
-                *o += kj * s;
+    let mut out: Vec<Plane> = ks.iter().map(|_| Plane::zeros(w, h)).collect();
+    let mut outs: Vec<&mut [f32]> = out.iter_mut().map(|p| p.data.as_mut_slice()).collect();
+    for_rows_many(&mut outs, w, |y, rows| {
+        for (row, k) in rows.iter_mut().zip(ks) {
+            let r = k.len() as isize / 2;
+            for (j, &kj) in k.iter().enumerate() {
+                let sy = reflect(y as isize + j as isize - r, h);
+                for (o, &s) in row.iter_mut().zip(&src.data[sy * w..(sy + 1) * w]) {
+                    *o += kj * s;
+                }
             }
         }
     });

@@ -178,3 +178,20 @@ pub fn start_shapes(user: &[Shape], interiors: &[(Shape, Point)]) -> (Vec<Shape>
     }
     (out, taken)
 }
+
+/// Whether a taught run's wraps and rectangles give way to the classifier's objects
+/// ([`start_shapes`]): in the engines that let one front become many objects. Preserve
+/// and implicit keep the user's shapes as the objects, one each.
+pub fn gives_way(mode: Mode) -> bool {
+    matches!(mode, Mode::Adaptive | Mode::Track)
+}
+
+/// The shapes a run guided by `guide` starts from, the user's shapes given: what a
+/// taught [`crate::job::Job`] starts from before it adds found seeds (the app's runs).
+pub fn taught_shapes(user: &[Shape], guide: &Guide) -> Vec<Shape> {
+    if gives_way(guide.params.mode) {
+        start_shapes(user, &interiors(&guide.probabilities)).0
+    } else {
+        user.to_vec()
+    }
+}
