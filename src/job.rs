@@ -274,6 +274,7 @@ impl Job {
     pub fn run_on(&self, image: Field, info: ImageInfo) -> Result<JobRun, JobError> {
         let (mut ev, shapes, taught, image) = self.start_from(Cow::Owned(image))?;
         let image = image.expect("an owned image is kept");
+        ev.free_coarse_levels();
         self.drive(&mut ev)?;
         ev.filter_clutter();
         Ok(JobRun {

@@ -41,6 +41,10 @@ fn open_app(_image: Option<std::path::PathBuf>) -> Result<(), Failure> {
 /// a multi-core machine each return costs a TLB shootdown across cores; a headless run
 /// frees dozens of image-sized buffers. Keeping them in the heap saves milliseconds per
 /// process (measured with perf: ~15% of a small case's time was in those shootdowns).
+/// Blocks of 16 MiB and more (an image of 2048² and up) still go to the kernel: in the
+/// heap, the coarse levels a large run frees leave holes its full-resolution buffers do
+/// not fit, and a 4096² run peaked at 318 MB where its heap never held more than 250
+/// (docs/decisions.md, 2026-12-02).
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 fn keep_freed_memory() {
     extern "C" {
@@ -50,7 +54,7 @@ fn keep_freed_memory() {
     const M_MMAP_THRESHOLD: i32 = -3;
     // SAFETY: mallopt only tunes glibc's allocator; called before any other thread exists.
     unsafe {
-        mallopt(M_MMAP_THRESHOLD, 256 << 20);
+        mallopt(M_MMAP_THRESHOLD, 16 << 20);
         mallopt(M_TRIM_THRESHOLD, 512 << 20);
     }
 }

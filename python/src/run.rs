@@ -12,7 +12,7 @@ use pyo3::types::{PyDict, PyList};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use topocontour::cli::{
-    classifier_for, job_for, run_loaded, teach_for, usage_line, Failure, RunSettings,
+    classifier_for, job_for, mode_of, run_loaded, teach_for, usage_line, Failure, RunSettings,
 };
 use topocontour::contours::ContourId;
 use topocontour::evolution::Evolver;
@@ -85,6 +85,8 @@ fn settings_with(
     let mut run = settings(argv)?;
     let teach = TeachIn::of(teach)?;
     if teach.is_some() {
+        // Taught in memory: the engine is a taught run's, as with the flags.
+        run.mode = Some(mode_of(&run));
         run.train = None;
         run.classifier = None;
     }

@@ -15,7 +15,7 @@ pub use crate::io::Format;
 pub use batch::{batch, BatchArgs};
 pub use bench::{bench, BenchArgs};
 pub use run::{
-    classifier_for, init_shapes, job_for, params_for, run_loaded, teach_for, RunSettings,
+    classifier_for, init_shapes, job_for, mode_of, params_for, run_loaded, teach_for, RunSettings,
 };
 pub use segment::{replay, segment, OutputArgs, ReplayArgs, SegmentArgs};
 pub use track::{track, tracker_for, TrackArgs};

@@ -224,12 +224,17 @@ pub fn init_shapes(a: &RunSettings, width: usize, height: usize) -> Result<Vec<S
     Ok(shapes)
 }
 
+/// The engine the settings ask for: `--mode`, else the default for a run taught by
+/// strokes or a classifier, or not ([`Mode::for_init`]).
+pub fn mode_of(a: &RunSettings) -> Mode {
+    a.mode
+        .unwrap_or_else(|| Mode::for_init(a.train.is_some() || a.classifier.is_some()))
+}
+
 /// Params for the settings.
 pub fn params_for(a: &RunSettings) -> Result<Params, Failure> {
     let mut p = Params {
-        mode: a
-            .mode
-            .unwrap_or_else(|| Mode::for_init(a.train.is_some() || a.classifier.is_some())),
+        mode: mode_of(a),
         polarity: a.object,
         modality: a.modality,
         broad_phase: a.broad_phase,

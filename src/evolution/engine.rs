@@ -104,6 +104,19 @@ macro_rules! each {
     };
 }
 
+impl Engines {
+    /// The explicit engines' share of the image model (the implicit engine keeps its
+    /// own grid and none).
+    pub(crate) fn image_mut(&mut self) -> Option<&mut std::sync::Arc<crate::image::ImageModel>> {
+        match self {
+            Engines::Adaptive(e) => Some(e.image_mut()),
+            Engines::Preserve(e) => Some(e.image_mut()),
+            Engines::Track(e) => Some(e.image_mut()),
+            Engines::Implicit(_) => None,
+        }
+    }
+}
+
 impl Engine for Engines {
     fn step(&mut self, index: usize, level: usize) -> Frame {
         each!(self, e => e.step(index, level))

@@ -53,6 +53,8 @@ pub struct Evolver {
     start_params: Params,
     /// Times the finest level settled and holes opened after it.
     reopened: usize,
+    /// Free the coarse levels on reaching level 0 ([`Evolver::free_coarse_levels`]).
+    free_coarse: bool,
 }
 
 impl Evolver {
@@ -133,6 +135,7 @@ impl Evolver {
             edits: Vec::new(),
             start_params,
             reopened: 0,
+            free_coarse: false,
         })
     }
 
@@ -197,9 +200,50 @@ impl Evolver {
         self.image.size()
     }
 
+    /// Asks the run to free the coarse pyramid and decision levels once it is on full
+    /// resolution, which it never leaves (holes then open on level 0 too): a quarter of
+    /// the model's memory, 66 MB for a 4096² image (docs/decisions.md, 2026-12-02). For a
+    /// run driven to its end ([`crate::job::Job`]); the app keeps them, since an edit in
+    /// an earlier frame replays from a coarse level. Results are the same either way.
+    pub fn free_coarse_levels(&mut self) {
+        self.free_coarse = true;
+    }
+
+    /// [`Evolver::free_coarse_levels`] now: false on a coarse level, or when someone else
+    /// holds the model too (then nothing is freed).
+    fn drop_coarse_levels(&mut self) -> bool {
+        if self.schedule.level != 0 || self.image.levels() == 1 {
+            return false;
+        }
+        // The engine's reference is swapped for a stand-in while the model is changed,
+        // so the evolver's is the only one.
+        let stand_in = Arc::new(ImageModel::empty());
+        let theirs = self
+            .engine
+            .image_mut()
+            .map(|slot| std::mem::replace(slot, stand_in));
+        drop(theirs);
+        let done = match Arc::get_mut(&mut self.image) {
+            Some(model) => {
+                model.drop_coarse();
+                true
+            }
+            None => false,
+        };
+        if let Some(slot) = self.engine.image_mut() {
+            *slot = self.image.clone();
+        }
+        done
+    }
+
     /// Advances one frame: every vertex moves once, then the rings are remeshed (in
     /// `Mode::Implicit`: the fronts march one time unit).
     pub fn step(&mut self) -> Frame {
+        if self.free_coarse && self.schedule.level == 0 {
+            // A run that starts on level 0 (a small image).
+            self.free_coarse = false;
+            self.drop_coarse_levels();
+        }
         let frame = self.engine.step(self.frame, self.schedule.level);
         self.after(frame)
     }
@@ -218,6 +262,11 @@ impl Evolver {
                 // Holes open on the level just finished (a quarter of the pixels of the
                 // next), then the rings are refined for the finer one.
                 self.open_holes(level + 1);
+                if level == 0 && self.free_coarse {
+                    // Before the finer rings and their bins are made: the peak.
+                    self.free_coarse = false;
+                    self.drop_coarse_levels();
+                }
                 let events = self.engine.refine(level);
                 self.log_events(&events);
             } else if self.schedule.converged && self.reopened < REOPEN_ROUNDS && self.open_holes(0)
@@ -462,5 +511,22 @@ mod tests {
         ev.run();
         assert!(ev.is_converged());
         assert_eq!(ev.contours().contour_count(), n * n);
+
+        // The same run kept compactly, its decision levels made when first read and its
+        // coarse levels freed at level 0, ends with the very same contours.
+        let (mut lean, _) = Evolver::keeping(img, &wrap, Params::default()).unwrap();
+        let levels = lean.image().levels();
+        assert!(levels > 1);
+        lean.free_coarse_levels();
+        lean.run();
+        assert_eq!(lean.image().levels(), 1, "the coarse levels were freed");
+        assert_eq!(lean.frames(), ev.frames());
+        let points = |e: &Evolver| -> Vec<(u64, u64)> {
+            let set = e.contours();
+            set.vertices()
+                .map(|v| (set.position(v).x.to_bits(), set.position(v).y.to_bits()))
+                .collect()
+        };
+        assert_eq!(points(&lean), points(&ev));
     }
 }

@@ -26,6 +26,7 @@ use super::scale::object_scale;
 use super::stored::Stored;
 use crate::geometry::Point;
 use crate::shape::Shape;
+use std::sync::OnceLock;
 
 /// Most levels of the pyramid.
 pub const PYRAMID_LEVELS: usize = 4;
@@ -77,8 +78,11 @@ pub struct ImageModel {
     pyramid: Pyramid,
     /// The two-class model on pyramid level 0.
     global: IntensityModel,
-    /// Per pyramid level, the local decision level (empty: the global model decides).
-    decision: Vec<Decision>,
+    /// Per pyramid level, the local decision level, made when first read (empty: the
+    /// global model decides).
+    decision: Vec<OnceLock<Decision>>,
+    /// How the decision levels are made (`None` without local levels).
+    rule: Option<LevelRule>,
     /// Radius of the local statistics, full-resolution pixels (`None` without them).
     radius: Option<f64>,
     width: usize,
@@ -90,12 +94,20 @@ impl ImageModel {
     /// none) give the hints of [`super::hints`]: the object and background medians, and
     /// in phase contrast the background level the halo is clipped to.
     pub fn prepare(image: &Field, params: &ModelParams, shapes: &[Shape]) -> Self {
-        Self::finish(Self::pyramid(image, params, shapes), params, shapes)
+        let model = Self::finish(Self::pyramid(image, params, shapes), params, shapes);
+        // Every level now, while the caller prepares (the app: in the background).
+        for l in 0..model.levels() {
+            model.decision(l);
+        }
+        model
     }
 
     /// [`ImageModel::prepare`], keeping the image compactly ([`Stored`]): it is packed as
     /// soon as its pyramid is built, before the decision levels are, so the floats and
-    /// the full model are never held at once (docs/decisions.md, 2026-12-02).
+    /// the full model are never held at once; and each level's decision level is made
+    /// when the run first reads it, coarsest first, so a run that frees the coarse
+    /// levels on reaching full resolution never holds every level's at once
+    /// (docs/decisions.md, 2026-12-02). The values are the same either way.
     pub fn prepare_keeping(image: Field, params: &ModelParams, shapes: &[Shape]) -> (Self, Stored) {
         let pyramid = Self::pyramid(&image, params, shapes);
         let kept = Stored::new(image);
@@ -119,14 +131,15 @@ impl ImageModel {
         let (width, height) = (fine.width, fine.height);
         let (object_hint, background_hint) = hints(fine, shapes);
         let global = IntensityModel::learn(fine, params.polarity, object_hint, background_hint);
-        let (radius, decision) = if params.local {
+        let (radius, rule, decision) = if params.local {
             let radius = params
                 .local_radius
                 .unwrap_or_else(|| object_scale(fine, &global));
-            let levels = decision_levels(&pyramid, &global, radius, params.modality);
-            (Some(radius), levels)
+            let rule = LevelRule::new(fine, &global, params.modality);
+            let cells = pyramid.levels.iter().map(|_| OnceLock::new()).collect();
+            (Some(radius), Some(rule), cells)
         } else {
-            (None, Vec::new())
+            (None, None, Vec::new())
         };
         ImageModel {
             kind: ModelKind::Intensity,
@@ -134,6 +147,7 @@ impl ImageModel {
             pyramid,
             global,
             decision,
+            rule,
             radius,
             width,
             height,
@@ -160,6 +174,32 @@ impl ImageModel {
     pub fn coarsest(&self) -> usize {
         self.levels() - 1
     }
+    /// A model of no pixels: a stand-in while an engine's model is changed in place.
+    pub(crate) fn empty() -> Self {
+        ImageModel {
+            kind: ModelKind::Intensity,
+            params: ModelParams::seeds(Polarity::Dark, Modality::Generic),
+            pyramid: Pyramid { levels: Vec::new() },
+            global: IntensityModel {
+                object: 0.0,
+                background: 1.0,
+            },
+            decision: Vec::new(),
+            rule: None,
+            radius: None,
+            width: 0,
+            height: 0,
+        }
+    }
+
+    /// Frees every level but full resolution's (pyramid and decision levels): for a run
+    /// that has reached level 0, which it never leaves ([`crate::evolution::Evolver::free_coarse_levels`]).
+    pub fn drop_coarse(&mut self) {
+        self.pyramid.levels.truncate(1);
+        self.pyramid.levels.shrink_to_fit();
+        self.decision.truncate(1);
+        self.decision.shrink_to_fit();
+    }
     /// The image the forces see, at full resolution (pyramid level 0).
     pub fn fine(&self) -> &Field {
         &self.pyramid.levels[0].image
@@ -175,36 +215,20 @@ impl ImageModel {
     /// The local decision level of pyramid level `level` (`None`: the global model
     /// decides there).
     pub fn decision(&self, level: usize) -> Option<&Decision> {
-        self.decision.get(level)
+        let (cell, rule, radius) = (self.decision.get(level)?, self.rule?, self.radius?);
+        Some(cell.get_or_init(|| {
+            let r = (radius / Pyramid::scale(level)).round().max(1.0) as usize;
+            decision_field(&self.pyramid.levels[level].image, r, &self.global, &rule)
+        }))
     }
     /// What the forces read on pyramid level `level`.
     pub fn level(&self, level: usize) -> LevelView<'_> {
         LevelView {
             level: &self.pyramid.levels[level],
-            decision: self.decision.get(level),
+            decision: self.decision(level),
             global: &self.global,
         }
     }
-}
-
-/// Per pyramid level, the local decision level of the region term at `radius`
-/// full-resolution pixels.
-fn decision_levels(
-    pyramid: &Pyramid,
-    model: &IntensityModel,
-    radius: f64,
-    modality: Modality,
-) -> Vec<Decision> {
-    let rule = LevelRule::new(&pyramid.levels[0].image, model, modality);
-    pyramid
-        .levels
-        .iter()
-        .enumerate()
-        .map(|(l, lv)| {
-            let r = (radius / Pyramid::scale(l)).round().max(1.0) as usize;
-            decision_field(&lv.image, r, model, &rule)
-        })
-        .collect()
 }
 
 /// One pyramid level of an [`ImageModel`], as the forces read it.

@@ -19,9 +19,9 @@
 //!   largest is a shred, not a daughter, and is dropped);
 //! - cells entering or appearing where no contour is are picked up by automatic seeds
 //!   that lie wholly outside every cell of the frame, placed only when it is time: every
-//!   [`TrackSettings::seed_every`] frames, or when the object area no cell covers grew
-//!   by the smallest cell kept since the last look (the seeds cost twice the rest of a
-//!   frame, and most frames have no new cell); the frame then evolves again with the
+//!   [`TrackSettings::seed_every`] frames while some object area is left that no cell
+//!   covers, or when that area grew by the smallest cell kept since the last look (the
+//!   seeds cost more than the rest of a frame, and most frames have no new cell); the frame then evolves again with the
 //!   seeds, its cells starting where they settled;
 //! - a seed where a cell was the frame before, on ground that cell's contour has left,
 //!   is a daughter that came apart from it (a condensing nucleus pinches one daughter
@@ -73,9 +73,9 @@ pub struct TrackSettings {
     /// pyramid of its parameters): 1 is the full resolution only, each more level
     /// carries a contour over a move twice as large.
     pub levels: usize,
-    /// Look for new cells at least every this many frames, and on any frame where the
-    /// object area no cell covers grew since the last look by the smallest cell kept
-    /// (`params.min_area`).
+    /// Look for new cells at least every this many frames while some object area is
+    /// left that no cell covers, and on any frame where that area grew since the last
+    /// look by the smallest cell kept (`params.min_area`).
     pub seed_every: usize,
 }
 
@@ -233,8 +233,9 @@ impl Tracker {
 
     /// A frame's evolution `evolved` from the cells before (`origins`), run again with
     /// automatic seeds where no cell is when it is time to look for new cells: every
-    /// [`TrackSettings::seed_every`] frames, when the object area no cell covers grew by
-    /// the smallest cell kept since the last look, or when no cell is left. Returns the
+    /// [`TrackSettings::seed_every`] frames if any object area is left that no cell
+    /// covers, when that area grew by the smallest cell kept since the last look, or when
+    /// no cell is left. Returns the
     /// origins, the pieces per origin and the frames evolved.
     fn with_new_cells(
         &mut self,
@@ -247,7 +248,10 @@ impl Tracker {
         let free = evolved.2.as_deref().map(|m| free_object(m, &found));
         let grown =
             free.is_none_or(|f| f as f64 > self.residual as f64 + self.settings.params.min_area);
-        if !(grown || t >= self.next_seeding) {
+        // The periodic look only where some object is left uncovered: where none is, a
+        // seed could only evolve on background, and the look costs more than the frame.
+        let due = t >= self.next_seeding && free != Some(0);
+        if !(grown || due) {
             return Ok((origins, evolved.0, evolved.1));
         }
         self.next_seeding = t + self.settings.seed_every.max(1);

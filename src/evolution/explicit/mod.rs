@@ -65,6 +65,11 @@ fn spacing(level: usize) -> (f64, f64, f64) {
 }
 
 impl<M: Motion> Explicit<M> {
+    /// What the forces read of the image (to be swapped, not shared, by the evolver).
+    pub(crate) fn image_mut(&mut self) -> &mut Arc<ImageModel> {
+        &mut self.image
+    }
+
     /// An engine moving the rings of `set` under the forces of `image`.
     pub fn new(set: ContourSet, image: Arc<ImageModel>, weights: ForceWeights, step: f64) -> Self {
         let bounds = set.domain();
