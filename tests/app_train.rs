@@ -139,6 +139,30 @@ fn the_train_tool_has_keys_a_legend_and_a_brush_size() {
 }
 
 #[test]
+fn the_train_tool_computes_the_features_before_the_first_stroke() {
+    let (mut h, _) = train_app("warm.png");
+    assert!(!h.state().doc.train.painted(), "no stroke yet");
+    let start = std::time::Instant::now();
+    loop {
+        let app = h.state();
+        if app
+            .jobs
+            .trainer
+            .features_ready(app.doc.image.as_ref().unwrap())
+        {
+            break;
+        }
+        assert!(start.elapsed().as_secs() < 60, "no features came");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.step();
+    }
+    // The first map then reads those features: it still comes, and is right.
+    paint_both(&mut h);
+    wait_for_map(&mut h);
+    assert!(prob(&h, OBJECT, 90, 64) > 0.5);
+}
+
+#[test]
 fn a_stroke_updates_the_probability_map_in_the_background() {
     let (mut h, _) = train_app("stroke.png");
     paint_both(&mut h);

@@ -8,13 +8,16 @@
 //! the window stays responsive. Requests carry the strokes' revision; the thread takes
 //! only the newest request waiting (latest wins) and the window drops an answer whose
 //! revision is no longer the document's (stale). The thread keeps the features of the
-//! image it saw last, so a stroke costs a training and a prediction, not the filters.
+//! image it saw last, so a stroke costs a training and a prediction, not the filters;
+//! and it computes them as soon as the Train tool is on an image ([`Trainer::warm`]),
+//! while the user paints the first strokes (on the 908×783 phase-contrast colony the
+//! features are about 1 s of the first map's 1.4).
 //! Training here is [`crate::learn::Teach::apply`]'s, step for step, so a run in the
 //! app and its session's replay read the same probabilities.
 
 use crate::evolution::Field;
 use crate::learn::{Classifier, FeatureSet, Features, ForestParams, Strokes, Taught};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::mpsc::{channel, Receiver, Sender};
 use std::sync::Arc;
 use std::time::Instant;
@@ -178,10 +181,17 @@ struct Request {
     source: Source,
 }
 
+/// What the window sends the thread: a map to make, or an image whose features to make
+/// ahead of the first strokes.
+enum Message {
+    Teach(Request),
+    Warm(Arc<Field>),
+}
+
 /// The background trainer: one thread, latest request wins.
 #[derive(Default)]
 pub struct Trainer {
-    tx: Option<Sender<Request>>,
+    tx: Option<Sender<Message>>,
     rx: Option<Receiver<Answer>>,
     /// The map last asked for, and when.
     pub requested: Option<(Key, Instant)>,
@@ -189,6 +199,10 @@ pub struct Trainer {
     pub map: Option<Arc<Map>>,
     /// Stroke to map shown, the last time, ms.
     pub latency_ms: Option<f64>,
+    /// The image (by address) whose features were asked for ahead of the strokes.
+    warmed: Option<usize>,
+    /// The image (by address, 0: none) whose features the thread holds now.
+    ready: Arc<AtomicUsize>,
 }
 
 impl Trainer {
@@ -206,21 +220,38 @@ impl Trainer {
         source: Source,
         wake: Option<egui::Context>,
     ) {
-        if self.tx.is_none() {
-            let (tx, rx) = spawn(wake);
-            (self.tx, self.rx) = (Some(tx), Some(rx));
-        }
         let req = Request {
             key,
             image,
             name,
             source,
         };
-        if let Some(tx) = &self.tx {
-            if tx.send(req).is_ok() {
-                self.requested = Some((key, Instant::now()));
-            }
+        if self.send(Message::Teach(req), wake) {
+            self.requested = Some((key, Instant::now()));
         }
+    }
+
+    /// Asks the thread to compute the default features of `image` now, once per image,
+    /// so that the first strokes' map costs a training and a prediction only.
+    pub fn warm(&mut self, image: Arc<Field>, wake: Option<egui::Context>) {
+        let at = Arc::as_ptr(&image) as usize;
+        if self.warmed != Some(at) && self.send(Message::Warm(image), wake) {
+            self.warmed = Some(at);
+        }
+    }
+
+    /// Whether the thread holds the features of `image` (computed ahead or for a map).
+    pub fn features_ready(&self, image: &Arc<Field>) -> bool {
+        self.ready.load(Ordering::Acquire) == Arc::as_ptr(image) as usize
+    }
+
+    /// Sends `m` to the thread (started on first use); whether it went.
+    fn send(&mut self, m: Message, wake: Option<egui::Context>) -> bool {
+        if self.tx.is_none() {
+            let (tx, rx) = spawn(wake, self.ready.clone());
+            (self.tx, self.rx) = (Some(tx), Some(rx));
+        }
+        self.tx.as_ref().is_some_and(|tx| tx.send(m).is_ok())
     }
 
     /// Takes a map computed in the window's thread.
@@ -269,17 +300,35 @@ impl Trainer {
 /// What the thread answers: the map's key and the map (or why teaching failed).
 type Answer = (Key, Result<Taught, String>);
 
-/// The thread: waits for a request, skips to the newest waiting, answers it.
-fn spawn(wake: Option<egui::Context>) -> (Sender<Request>, Receiver<Answer>) {
-    let (tx, requests) = channel::<Request>();
+/// The thread: waits for a request, skips to the newest waiting, answers it; an image
+/// to warm is taken only when no map is asked for.
+fn spawn(
+    wake: Option<egui::Context>,
+    ready: Arc<AtomicUsize>,
+) -> (Sender<Message>, Receiver<Answer>) {
+    let (tx, requests) = channel::<Message>();
     let (answers, rx) = channel();
     std::thread::spawn(move || {
         let mut cache: Option<(Arc<Field>, FeatureSet, Features)> = None;
-        while let Ok(mut req) = requests.recv() {
-            while let Ok(newer) = requests.try_recv() {
-                req = newer;
+        while let Ok(first) = requests.recv() {
+            let (mut teach_req, mut warm) = (None, None);
+            for m in std::iter::once(first).chain(requests.try_iter()) {
+                match m {
+                    Message::Teach(r) => teach_req = Some(r),
+                    Message::Warm(image) => warm = Some(image),
+                }
             }
+            let Some(req) = teach_req else {
+                if let Some(image) = warm {
+                    features_of(&image, FeatureSet::default(), &mut cache);
+                    ready.store(Arc::as_ptr(&image) as usize, Ordering::Release);
+                }
+                continue;
+            };
             let result = teach(&req, &mut cache);
+            if let Some((image, _, _)) = &cache {
+                ready.store(Arc::as_ptr(image) as usize, Ordering::Release);
+            }
             if answers.send((req.key, result)).is_err() {
                 break;
             }
@@ -289,6 +338,22 @@ fn spawn(wake: Option<egui::Context>) -> (Sender<Request>, Receiver<Answer>) {
         }
     });
     (tx, rx)
+}
+
+/// The features of `image` by `set`, from `cache` when it holds them (else made and kept).
+fn features_of<'a>(
+    image: &Arc<Field>,
+    set: FeatureSet,
+    cache: &'a mut Option<(Arc<Field>, FeatureSet, Features)>,
+) -> &'a Features {
+    let fresh = cache
+        .as_ref()
+        .is_none_or(|(img, s, _)| !Arc::ptr_eq(img, image) || *s != set);
+    if fresh {
+        let f = set.compute(image.width, image.height, &image.data);
+        *cache = Some((image.clone(), set, f));
+    }
+    &cache.as_ref().expect("just filled").2
 }
 
 /// [`crate::learn::Teach::apply`] with the image's features kept between requests.
@@ -305,14 +370,7 @@ fn teach(
             c.features.clone()
         }
     };
-    let fresh = cache
-        .as_ref()
-        .is_none_or(|(img, s, _)| !Arc::ptr_eq(img, &req.image) || *s != set);
-    if fresh {
-        let f = set.compute(req.image.width, req.image.height, &req.image.data);
-        *cache = Some((req.image.clone(), set.clone(), f));
-    }
-    let features = &cache.as_ref().expect("just filled").2;
+    let features = features_of(&req.image, set.clone(), cache);
     let classifier = match &req.source {
         Source::Strokes(s) => {
             let mut c = Classifier::train_with(set, features, s, &ForestParams::default());

@@ -55,7 +55,15 @@ impl TopoApp {
 
     /// Asks for the map of the strokes on screen, once per revision and image.
     pub(super) fn request_map(&mut self) {
-        let Some(key) = self.map_key() else { return };
+        let Some(key) = self.map_key() else {
+            // The Train tool on an image and nothing to train yet: its features now.
+            if self.view.prefs.tool == super::Tool::Train {
+                if let Some(image) = self.doc.image.clone() {
+                    self.jobs.trainer.warm(image, self.view.egui_ctx.clone());
+                }
+            }
+            return;
+        };
         if self.jobs.trainer.asked(key) {
             return;
         }
