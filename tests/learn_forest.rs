@@ -96,3 +96,46 @@ fn the_seed_decides_the_forest() {
     let c = Forest::train(&x, &y, NF, 3, &ForestParams { seed: 9, ..p });
     assert_ne!(a, c);
 }
+
+/// The walk indexes without bounds checks: a node that no walk reaches may hold any
+/// index (a damaged file `misfit` passes, since it only follows the walks), and the
+/// prediction is still the reachable leaves' distribution, with no panic.
+#[test]
+fn an_unreachable_damaged_node_changes_nothing() {
+    use topocontour::learn::forest::Node;
+    let leaf = |at: u32| Node {
+        feature: 0,
+        threshold: 0.0,
+        left: at,
+        right: at,
+    };
+    let forest = Forest {
+        classes: 2,
+        features: 1,
+        nodes: vec![
+            Node {
+                feature: 0,
+                threshold: 0.5,
+                left: 1,
+                right: 2,
+            },
+            leaf(1),
+            leaf(2),
+            // Unreachable: children, feature and distribution all out of range.
+            Node {
+                feature: 7,
+                threshold: 0.0,
+                left: 99,
+                right: 3,
+            },
+            leaf(4),
+        ],
+        roots: vec![(0, 1)],
+        leaf_of: vec![u32::MAX, 0, 2, u32::MAX, 1000],
+        leaf_values: vec![0.25, 0.75, 1.0, 0.0],
+    };
+    assert_eq!(forest.misfit(1, 2), None);
+    assert_eq!(forest.predict_one(&[0.0]), vec![0.25, 0.75]);
+    assert_eq!(forest.predict_one(&[1.0]), vec![1.0, 0.0]);
+    assert_eq!(forest.predict_one(&[f32::NAN]), vec![1.0, 0.0]);
+}

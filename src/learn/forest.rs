@@ -22,7 +22,9 @@
 //!   cases; left or right is an index, not a branch, since no predictor can guess
 //!   it): the walks' loads overlap, the one branch is predictable (neighbours
 //!   mostly end in leaves of one depth), and the chunk's features stay in cache
-//!   across the trees.
+//!   across the trees; the walk indexes without bounds checks (its indices are made
+//!   in range once per call, where the forest is laid out for it) and a leaf's
+//!   values lie at its own index, not behind a lookup.
 //!
 //! tests/learn_forest.rs checks the predictions against smartcore's forest trained on
 //! the same data.
@@ -85,8 +87,9 @@ struct Step {
     child: [u32; 2],
 }
 
-/// The forest laid out for prediction: its steps, each tree's root (with [`LEAF`]) and
-/// the leaves' class distributions already divided by the number of trees.
+/// The forest laid out for prediction: its steps, each tree's root (with [`LEAF`]) and,
+/// `classes` per step, the leaves' class distributions already divided by the number
+/// of trees (indexed by the step, so arriving needs no lookup of where they lie).
 struct Walk {
     steps: Vec<Step>,
     roots: Vec<u32>,
@@ -386,10 +389,14 @@ impl Forest {
         const LANES: usize = 8;
         let c = self.classes;
         let n = out.len() / c;
+        assert!(n > 0 && cols.len() == self.features && cols.iter().all(|col| col.len() >= n));
         let steps = &walk.steps[..];
+        let values = &walk.values[..];
         for (&(_, depth), &start) in self.roots.iter().zip(&walk.roots) {
             for p in (0..n).step_by(LANES) {
                 let lanes = LANES.min(n - p);
+                // Lanes past the chunk's end re-read its last pixel.
+                let px: [usize; LANES] = std::array::from_fn(|k| p + k.min(lanes - 1));
                 let mut at = [start; LANES];
                 // Eight walks in lockstep (a leaf loops to itself): the loads overlap,
                 // and the one branch, "all eight in leaves" (their LEAF bits), is as
@@ -399,10 +406,15 @@ impl Forest {
                         break;
                     }
                     for k in 0..LANES {
-                        // Lanes past the chunk's end re-read its last pixel.
-                        let px = p + k.min(lanes - 1);
-                        let s = steps[(at[k] & !LEAF) as usize];
-                        let v = cols[s.feature as usize][px];
+                        // SAFETY: `Forest::walk` made every index a step holds (root,
+                        // children) below `steps.len()` and every feature below
+                        // `self.features`, which is `cols.len()` (asserted above, as
+                        // px[k] < n ≤ every column's length).
+                        let (s, v) = unsafe {
+                            let s = *steps.get_unchecked((at[k] & !LEAF) as usize);
+                            let v = *cols.get_unchecked(s.feature as usize).get_unchecked(px[k]);
+                            (s, v)
+                        };
                         // Values ≤ the threshold go left, NaN right: the sign of
                         // t − v (exact: zero only when they are equal), an index
                         // rather than a branch that no predictor could guess.
@@ -411,11 +423,17 @@ impl Forest {
                     }
                 }
                 for (k, &a) in at.iter().enumerate().take(lanes) {
-                    let o = self.leaf_of[(a & !LEAF) as usize] as usize;
-                    for (d, v) in out[(p + k) * c..(p + k + 1) * c]
-                        .iter_mut()
-                        .zip(&walk.values[o..o + c])
-                    {
+                    let o = (a & !LEAF) as usize * c;
+                    // SAFETY: `Forest::walk` made `values` `c` per step and `a` a
+                    // step's index; p + k < n, so the pixel's `c` values lie in
+                    // `out` (n · c long).
+                    let (to, from) = unsafe {
+                        (
+                            out.get_unchecked_mut((p + k) * c..(p + k + 1) * c),
+                            values.get_unchecked(o..o + c),
+                        )
+                    };
+                    for (d, v) in to.iter_mut().zip(from) {
                         *d += v;
                     }
                 }
@@ -423,34 +441,70 @@ impl Forest {
         }
     }
 
-    /// The forest as [`Forest::walk_chunk`] reads it.
+    /// The forest as [`Forest::walk_chunk`] reads it, every index in range so that its
+    /// walk may index without bounds checks: a node with an index out of range (none
+    /// that [`Forest::misfit`] passed can be reached) becomes a leaf with no class
+    /// distribution.
+    ///
+    /// # Panics
+    /// If the forest has no features or a root is out of range (`misfit` refuses both).
     fn walk(&self) -> Walk {
-        assert!(self.nodes.len() < LEAF as usize, "node count");
-        let mark = |i: u32| {
-            let leaf = self
-                .nodes
-                .get(i as usize)
-                .is_some_and(|nd| nd.left == i && nd.right == i);
-            if leaf {
-                i | LEAF
-            } else {
-                i
-            }
+        let n = self.nodes.len();
+        let c = self.classes;
+        assert!(n < LEAF as usize, "node count");
+        assert!(self.features > 0, "a forest without features");
+        assert!(
+            self.roots.iter().all(|&(r, _)| (r as usize) < n),
+            "a root out of range"
+        );
+        let fits = |nd: &Node| {
+            (nd.left as usize) < n
+                && (nd.right as usize) < n
+                && (nd.feature as usize) < self.features
         };
+        let is_leaf = |i: usize| {
+            let nd = &self.nodes[i];
+            !fits(nd) || (nd.left as usize == i && nd.right as usize == i)
+        };
+        let mark = |i: u32| if is_leaf(i as usize) { i | LEAF } else { i };
         let scale = 1.0 / self.roots.len() as f32;
+        // Per step its tree's share of the class distribution (leaves; zero for splits,
+        // which no walk ends in): the product each tree adds, as `v * scale` in the walk
+        // would give it.
+        let mut values = vec![0.0f32; n * c];
+        for (i, dst) in values.chunks_exact_mut(c.max(1)).enumerate() {
+            let o = self.leaf_of.get(i).map_or(usize::MAX, |&o| o as usize);
+            let src = o.checked_add(c).and_then(|e| self.leaf_values.get(o..e));
+            if let (true, Some(src)) = (is_leaf(i), src) {
+                for (d, v) in dst.iter_mut().zip(src) {
+                    *d = v * scale;
+                }
+            }
+        }
         Walk {
             steps: self
                 .nodes
                 .iter()
-                .map(|nd| Step {
-                    feature: nd.feature,
-                    threshold: nd.threshold,
-                    child: [mark(nd.left), mark(nd.right)],
+                .enumerate()
+                .map(|(i, nd)| {
+                    if fits(nd) {
+                        Step {
+                            feature: nd.feature,
+                            threshold: nd.threshold,
+                            child: [mark(nd.left), mark(nd.right)],
+                        }
+                    } else {
+                        let me = i as u32 | LEAF;
+                        Step {
+                            feature: 0,
+                            threshold: 0.0,
+                            child: [me, me],
+                        }
+                    }
                 })
                 .collect(),
             roots: self.roots.iter().map(|&(r, _)| mark(r)).collect(),
-            // The product each tree adds, as `v * scale` in the walk would give it.
-            values: self.leaf_values.iter().map(|v| v * scale).collect(),
+            values,
         }
     }
 
