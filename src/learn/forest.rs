@@ -113,6 +113,35 @@ pub struct Forest {
     pub leaf_values: Vec<f32>,
 }
 
+/// A [`Forest`] laid out for prediction ([`Forest::predictor`]).
+pub struct Predictor<'a> {
+    forest: &'a Forest,
+    walk: Walk,
+}
+
+impl Predictor<'_> {
+    /// As [`Forest::predict_block`].
+    pub fn predict_block(&self, planes: &[&[f32]], start: usize, out: &mut [f32]) {
+        let c = self.forest.classes;
+        let len = out.len() / c;
+        assert!(
+            planes.len() == self.forest.features && planes.iter().all(|p| p.len() >= start + len)
+        );
+        // A chunk of neighbouring pixels through every tree: their feature values are
+        // read where they lie, feature by feature, so the eight lanes of a walk that
+        // test one feature read one cache line, and the chunk stays in cache across
+        // the trees.
+        let mut cols: Vec<&[f32]> = Vec::with_capacity(planes.len());
+        for from in (0..len).step_by(CHUNK) {
+            let n = CHUNK.min(len - from);
+            cols.clear();
+            cols.extend(planes.iter().map(|p| &p[start + from..start + from + n]));
+            self.forest
+                .walk_chunk(&cols, &mut out[from * c..(from + n) * c], &self.walk);
+        }
+    }
+}
+
 /// SplitMix64: small, seeded, and the same on every platform.
 struct Rng(u64);
 
@@ -366,20 +395,15 @@ impl Forest {
     /// into `out` (`classes` per pixel, zeroed by the caller); `planes[f]` holds feature
     /// f of every pixel.
     pub fn predict_block(&self, planes: &[&[f32]], start: usize, out: &mut [f32]) {
-        let c = self.classes;
-        let len = out.len() / c;
-        assert!(planes.len() == self.features && planes.iter().all(|p| p.len() >= start + len));
-        // A chunk of neighbouring pixels through every tree: their feature values are
-        // read where they lie, feature by feature, so the eight lanes of a walk that
-        // test one feature read one cache line, and the chunk stays in cache across
-        // the trees.
-        let walk = self.walk();
-        let mut cols: Vec<&[f32]> = Vec::with_capacity(planes.len());
-        for from in (0..len).step_by(CHUNK) {
-            let n = CHUNK.min(len - from);
-            cols.clear();
-            cols.extend(planes.iter().map(|p| &p[start + from..start + from + n]));
-            self.walk_chunk(&cols, &mut out[from * c..(from + n) * c], &walk);
+        self.predictor().predict_block(planes, start, out);
+    }
+
+    /// The forest laid out for prediction once, for many [`Predictor::predict_block`]
+    /// calls (the rows of an image).
+    pub fn predictor(&self) -> Predictor<'_> {
+        Predictor {
+            forest: self,
+            walk: self.walk(),
         }
     }
 

@@ -178,8 +178,10 @@ impl Classifier {
         let c = self.labels.len();
         let planes: Vec<&[f32]> = features.planes.iter().map(|p| p.as_slice()).collect();
         let mut data = vec![0.0f32; w * h * c];
+        // Laid out once for all rows, not once per row.
+        let forest = self.forest.predictor();
         filters::for_rows(&mut data, w * c, |y, row| {
-            self.forest.predict_block(&planes, y * w, row);
+            forest.predict_block(&planes, y * w, row);
         });
         Probabilities {
             width: w,
