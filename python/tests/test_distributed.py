@@ -220,3 +220,30 @@ def test_object_larger_than_overlap_is_refused(client, radius, centre, others, s
     assert "\n" not in str(e.value)
     with pytest.raises(ValueError, match="2-D"):
         segment_large(np.zeros((4, 4, 4), np.uint8), client=client)
+
+
+def test_an_object_on_a_seam_comes_out_once(client, tmp_path):
+    """Disks centred on the seams between tiles, where two tiles' runs put an object's
+    lowest point on either side of the seam: each comes out exactly once."""
+    size, tile, r = 1024, 256, 11.0
+    rng = np.random.default_rng(5)
+    img = np.full((size, size), 200.0)
+    cells = []
+    seams = np.arange(tile, size, tile)
+    for s in seams:
+        # Along the seam, away from the crossing seams (disks there would touch).
+        for t in [t for t in np.arange(30.0, size - 30.0, 44.0) if np.abs(seams - t).min() > 30]:
+            dx, dy = rng.uniform(-0.6, 0.6, 2)
+            cells += [(s + dx, t + dy), (t + dy, s + dx)]
+    yy, xx = np.mgrid[0:size, 0:size]
+    for x, y in cells:
+        d = np.hypot(xx + 0.5 - x, yy + 0.5 - y)
+        img = np.minimum(img, 200 - 140 * np.clip(r + 0.5 - d, 0, 1))
+    img += rng.normal(0, 8, img.shape)
+    img = np.clip(img, 0, 255).astype(np.uint8)
+    big = segment_large(img, tile=tile, overlap=128, client=client, object="dark")
+    outer = [c for c in big.contours if not c["hole"]]
+    centres = np.array([c["points"].mean(0) for c in outer])
+    ours = [int(np.argmin(np.hypot(centres[:, 0] - x, centres[:, 1] - y))) for x, y in cells]
+    assert len(outer) == len(set(ours)) == len(cells), (len(outer), len(set(ours)), len(cells))
+    assert int(big.labels_array().max()) == len(cells)

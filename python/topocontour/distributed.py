@@ -11,7 +11,11 @@ twice and a killed worker loses only the images Dask then runs again elsewhere.
 
 `segment_large` segments overlapping tiles with automatic seeds and keeps an object only
 in the tile whose core holds its lowest-leftmost point (the ownership rule of StarDist's
-big-image prediction, `stardist.big`), so each object comes out once and whole. An owned
+big-image prediction, `stardist.big`), so each object comes out once and whole. Two tiles
+see an object on their seam a little differently (the lowest point of a round object's
+flat bottom moves by pixels along it), so an object that crosses a seam, or comes within
+`SEAM` px of one, is not decided by each tile alone: both report it, and the client keeps
+one copy (`_settle_seams`) — without that, one object in 10,666 came out twice at 16k². An owned
 object reaching a cut edge of its tile, or a part of an object seen at a cut edge that
 no tile owns, is refused in one line naming the overlap. The labels go into a zarr
 array chunked by the tiles' cores, each chunk written by one task from its tile's and
@@ -39,6 +43,8 @@ SUMMARY_HEADER = "image,id,area,perimeter,circularity,centroid_x,centroid_y,hole
 # the others (mask, labels, overlay, roi) need the Rust encoders, so they are refused.
 FORMATS = {"json": "{}.json", "geojson": "{}.geojson", "csv": "{}.csv", "svg": "{}.svg"}
 RECORDS = ".topocontour"
+# Objects whose box comes this close to a seam between two cores are settled by the client.
+SEAM = 4.0
 
 
 def list_images(folder):
@@ -318,6 +324,8 @@ def _segment_tile(data, core, region, shape, overlap, reach, params):
     contours = result.contours
     # A cut edge is a side of the region inside the image; the image's own border is not.
     cut = (ry0 > 0, ry1 < shape[0], rx0 > 0, rx1 < shape[1])
+    # Seams: core edges that another tile's core shares.
+    seams = (core[0] > 0, core[1] < shape[0], core[2] > 0, core[3] < shape[1])
     kept, probes = [], []
     for k, o in enumerate(c for c in contours if not c["hole"]):
         pts = o["points"]
@@ -329,7 +337,17 @@ def _segment_tile(data, core, region, shape, overlap, reach, params):
         crop = labels[y0:y1, x0:x1] == k + 1
         near = (lo[1] < reach, hi[1] > (ry1 - ry0) - reach, lo[0] < reach, hi[0] > (rx1 - rx0) - reach)
         near_cut = any(c and e for c, e in zip(cut, near))
-        if not (core[0] <= ay < core[1] and core[2] <= ax < core[3]):
+        owned = core[0] <= ay < core[1] and core[2] <= ax < core[3]
+        box = (lo[1] + ry0, lo[0] + rx0, hi[1] + ry0, hi[0] + rx0)  # y0, x0, y1, x1
+        # Near this core (its box meets the core grown by SEAM), and not well inside it
+        # on a seam's side.
+        near_core = (box[0] < core[1] + SEAM and box[2] > core[0] - SEAM
+                     and box[1] < core[3] + SEAM and box[3] > core[2] - SEAM)
+        off_inner = ((seams[0] and box[0] < core[0] + SEAM) or (seams[1] and box[2] > core[1] - SEAM)
+                     or (seams[2] and box[1] < core[2] + SEAM) or (seams[3] and box[3] > core[3] - SEAM))
+        on_seam = near_core and off_inner
+        # An object this tile does not own and does not see whole is its owner's.
+        if not owned and (not on_seam or near_cut):
             if near_cut and crop.any():
                 py, px = _deepest_pixel(crop)
                 probes.append((py + y0 + ry0, px + x0 + rx0))
@@ -344,8 +362,66 @@ def _segment_tile(data, core, region, shape, overlap, reach, params):
         kept.append({
             "rings": [(r["hole"], r["area"], r["points"] + (rx0, ry0)) for r in rings],
             "box": (y0 + ry0, x0 + rx0), "crop": np.packbits(crop), "crop_shape": crop.shape,
+            # What the client settles a seam with: the point and the box in the image.
+            "seam": (float(ax), float(ay), tuple(float(b) for b in box)) if on_seam else None,
         })
     return ("ok", kept, probes)
+
+
+def _box_iou(a, b):
+    """IoU of two (y0, x0, y1, x1) boxes."""
+    h = min(a[2], b[2]) - max(a[0], b[0])
+    w = min(a[3], b[3]) - max(a[1], b[1])
+    if h <= 0 or w <= 0:
+        return 0.0
+    area = lambda r: (r[2] - r[0]) * (r[3] - r[1])  # noqa: E731
+    return h * w / (area(a) + area(b) - h * w)
+
+
+def _settle_seams(tiles, seams):
+    """Which of the objects that tiles reported on a seam each tile keeps. `seams[t]`:
+    tile t's (index in its kept list, x, y, box). Copies of one object from different
+    tiles (boxes with IoU above one half) are one object: the copy whose tile's core holds
+    the copies' mean point is kept (the first such), the others dropped; an object only one
+    tile saw is kept where its point lies. Returns per tile the set of indices to drop."""
+    entries = [(t, j, x, y, box) for t, ss in enumerate(seams) for j, x, y, box in ss]
+    drop = [set() for _ in tiles]
+    group = list(range(len(entries)))
+    # Copies lie on one spot: compare only entries whose box centres share a bucket or
+    # touch one.
+    cell = 64.0
+    buckets = {}
+    for i, e in enumerate(entries):
+        b = e[4]
+        key = (int((b[0] + b[2]) / 2 // cell), int((b[1] + b[3]) / 2 // cell))
+        buckets.setdefault(key, []).append(i)
+
+    def root(i):
+        while group[i] != i:
+            group[i] = group[group[i]]
+            i = group[i]
+        return i
+
+    for (ky, kx), members in buckets.items():
+        near = [j for dy in (-1, 0, 1) for dx in (-1, 0, 1) for j in buckets.get((ky + dy, kx + dx), [])]
+        for a in members:
+            for b in near:
+                if a < b and entries[a][0] != entries[b][0] and _box_iou(entries[a][4], entries[b][4]) > 0.5:
+                    group[root(a)] = root(b)
+    copies = {}
+    for i in range(len(entries)):
+        copies.setdefault(root(i), []).append(entries[i])
+    for members in copies.values():
+        mx = sum(m[2] for m in members) / len(members)
+        my = sum(m[3] for m in members) / len(members)
+        holds = [m for m in members
+                 if tiles[m[0]][0][0] <= my < tiles[m[0]][0][1]
+                 and tiles[m[0]][0][2] <= mx < tiles[m[0]][0][3]]
+        keep = (holds or members)[0]
+        for m in members:
+            if m is not keep:
+                drop[m[0]].add(m[1])
+    return drop
 
 
 def _write_chunk(path, core, pieces, probes):
@@ -411,12 +487,17 @@ def segment_large(array, *, tile=4096, overlap=None, client, out=None, reach=16,
     segs = [client.submit(_segment_tile, _tile_data(client, array, region), core, region,
                           (height, width), overlap, reach, params, pure=False)
             for core, region in tiles]
-    counted = client.gather([client.submit(  # only counts and probes come here
-        lambda r: (r[0], len(r[1]), r[2]) if r[0] == "ok" else r, s) for s in segs])
+    counted = client.gather([client.submit(  # only counts, probes and seams come here
+        lambda r: (r[0], len(r[1]), r[2],
+                   [(j, *o["seam"]) for j, o in enumerate(r[1]) if o["seam"] is not None])
+        if r[0] == "ok" else r, s) for s in segs])
     refused = [c[1] for c in counted if c[0] == "refused"]
     if refused:
         raise ValueError(refused[0])
-    firsts = np.concatenate([[1], 1 + np.cumsum([c[1] for c in counted])])[:-1]
+    drop = _settle_seams(tiles, [c[3] for c in counted])
+    segs = [client.submit(lambda r, d: (r[0], [o for j, o in enumerate(r[1]) if j not in d], r[2]),
+                          s, sorted(d)) for s, d in zip(segs, drop)]
+    firsts = np.concatenate([[1], 1 + np.cumsum([c[1] - len(d) for c, d in zip(counted, drop)])])[:-1]
     per_row = math.ceil(width / tile)
     writes = []
     for t, (core, _) in enumerate(tiles):
