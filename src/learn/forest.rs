@@ -23,8 +23,8 @@
 //!   it): the walks' loads overlap, the one branch is predictable (neighbours
 //!   mostly end in leaves of one depth), and the chunk's features stay in cache
 //!   across the trees; the walk indexes without bounds checks (its indices are made
-//!   in range once per call, where the forest is laid out for it) and a leaf's
-//!   values lie at its own index, not behind a lookup.
+//!   in range once per image, where [`Forest::predictor`] lays the forest out) and a
+//!   leaf's values lie at its own index, not behind a lookup.
 //!
 //! tests/learn_forest.rs checks the predictions against smartcore's forest trained on
 //! the same data.
