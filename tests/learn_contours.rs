@@ -129,7 +129,7 @@ fn bad_strokes_get_one_line_and_exit_2() {
 }
 
 /// A taught run with no `--mode` gets the engine that keeps objects apart
-/// (`Mode::for_init`): from a wrap or from found seeds, every rod comes out alone, where
+/// (`Mode::default_for`): from a wrap or from found seeds, every rod comes out alone, where
 /// the adaptive engine merges some; a `--mode` given wins, and an untaught run stays
 /// adaptive.
 #[test]

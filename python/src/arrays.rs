@@ -6,6 +6,7 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use std::path::PathBuf;
 use topocontour::evolution::Field;
+use topocontour::geometry::Point;
 use topocontour::io::{load_image_page, Samples};
 
 /// An image's samples, owned (copied out of the array before the GIL is released).
@@ -94,6 +95,12 @@ pub fn raster<T: numpy::Element>(
     numpy::ndarray::Array2::from_shape_vec((height, width), data)
         .expect("a raster of its size")
         .into_pyarray(py)
+}
+
+/// Points as an (N, 2) float64 array of (x, y) rows.
+pub fn points_array<'py>(py: Python<'py>, pts: &[Point]) -> Bound<'py, PyArray2<f64>> {
+    let flat: Vec<f64> = pts.iter().flat_map(|p| [p.x, p.y]).collect();
+    raster(py, flat, 2, pts.len())
 }
 
 /// `load(path, page=0)`: page `page` (from 0) of an image file as the engine reads it:

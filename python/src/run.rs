@@ -2,7 +2,7 @@
 //! command line's clap definitions, one [`Job`] run with the GIL released, and the
 //! finished run ([`Segmentation`]) read back as the CLI's exports.
 
-use crate::arrays::{image_samples, raster};
+use crate::arrays::{image_samples, points_array, raster};
 use crate::learn::{PyClassifier, StrokesIn};
 use clap::{CommandFactory, Parser};
 use numpy::PyArray2;
@@ -236,9 +236,7 @@ impl Segmentation {
             d.set_item("hole", set.is_hole(id))?;
             d.set_item("parent", parent.map(|p| p.0))?;
             d.set_item("area", set.signed_area(id).abs())?;
-            let pts = set.ring_points(id);
-            let flat: Vec<f64> = pts.iter().flat_map(|p| [p.x, p.y]).collect();
-            d.set_item("points", raster(py, flat, 2, pts.len()))?;
+            d.set_item("points", points_array(py, &set.ring_points(id)))?;
             list.append(d)?;
         }
         Ok(list)

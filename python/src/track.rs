@@ -148,8 +148,7 @@ impl Tracks {
                 c.set_item("track", o.track)?;
                 c.set_item("area", o.area)?;
                 c.set_item("centroid", (o.centroid.x, o.centroid.y))?;
-                let flat: Vec<f64> = o.ring.iter().flat_map(|p| [p.x, p.y]).collect();
-                c.set_item("ring", crate::arrays::raster(py, flat, 2, o.ring.len()))?;
+                c.set_item("ring", crate::arrays::points_array(py, &o.ring))?;
                 cells.append(c)?;
             }
             d.set_item("objects", cells)?;

@@ -53,7 +53,7 @@ pub struct Settings {
     /// Contrast window (low, high) of the image on screen.
     pub contrast: (f32, f32),
     /// Whether the user (or a session) chose the engine; until then a taught run takes
-    /// the command line's default for it ([`Mode::for_init`]).
+    /// the command line's default for it ([`Mode::default_for`]).
     pub mode_chosen: bool,
 }
 

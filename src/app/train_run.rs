@@ -126,7 +126,7 @@ impl TopoApp {
         let s = &mut self.doc.settings;
         if !s.mode_chosen {
             // As the command line: a taught run keeps the classifier's objects apart.
-            s.params.mode = crate::evolution::Mode::for_init(true);
+            s.params.mode = crate::evolution::Mode::default_for(true);
             s.mode_chosen = true;
             self.status.notice = Some(format!(
                 "taught run: engine {} keeps touching cells apart (choose Adaptive to let them merge)",

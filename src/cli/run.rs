@@ -225,10 +225,10 @@ pub fn init_shapes(a: &RunSettings, width: usize, height: usize) -> Result<Vec<S
 }
 
 /// The engine the settings ask for: `--mode`, else the default for a run taught by
-/// strokes or a classifier, or not ([`Mode::for_init`]).
+/// strokes or a classifier, or not ([`Mode::default_for`]).
 pub fn mode_of(a: &RunSettings) -> Mode {
     a.mode
-        .unwrap_or_else(|| Mode::for_init(a.train.is_some() || a.classifier.is_some()))
+        .unwrap_or_else(|| Mode::default_for(a.train.is_some() || a.classifier.is_some()))
 }
 
 /// Params for the settings.

@@ -240,7 +240,7 @@ impl Evolver {
     /// `Mode::Implicit`: the fronts march one time unit).
     pub fn step(&mut self) -> Frame {
         if self.free_coarse && self.schedule.level == 0 {
-            // A run that starts on level 0 (a small image).
+            // A run that starts on level 0 (the implicit engine, or a one-level image).
             self.free_coarse = false;
             self.drop_coarse_levels();
         }

@@ -49,7 +49,7 @@ impl Mode {
     /// Measured on the public cases, docs/decisions.md (2026-12-02): taught, mean SEG
     /// with automatic seeds 0.589 adaptive, 0.733 track; untaught, track would lose the
     /// topology of 4 of the 8 synthetic cases that adaptive gets right.
-    pub fn for_init(taught: bool) -> Mode {
+    pub fn default_for(taught: bool) -> Mode {
         if taught {
             Mode::Track
         } else {

@@ -21,8 +21,8 @@
 //!   that lie wholly outside every cell of the frame, placed only when it is time: every
 //!   [`TrackSettings::seed_every`] frames while some object area is left that no cell
 //!   covers, or when that area grew by the smallest cell kept since the last look (the
-//!   seeds cost more than the rest of a frame, and most frames have no new cell); the frame then evolves again with the
-//!   seeds, its cells starting where they settled;
+//!   seeds cost more than the rest of a frame, and most frames have no new cell); the
+//!   frame then evolves again with the seeds, its cells starting where they settled;
 //! - a seed where a cell was the frame before, on ground that cell's contour has left,
 //!   is a daughter that came apart from it (a condensing nucleus pinches one daughter
 //!   off dimly, and the contour lets go of it instead of splitting): the mother divided,
@@ -235,8 +235,7 @@ impl Tracker {
     /// automatic seeds where no cell is when it is time to look for new cells: every
     /// [`TrackSettings::seed_every`] frames if any object area is left that no cell
     /// covers, when that area grew by the smallest cell kept since the last look, or when
-    /// no cell is left. Returns the
-    /// origins, the pieces per origin and the frames evolved.
+    /// no cell is left. Returns the origins, the pieces per origin and the frames evolved.
     fn with_new_cells(
         &mut self,
         image: &Field,
