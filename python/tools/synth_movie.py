@@ -10,7 +10,7 @@ Families:
                   illumination, blur, shot + read noise, 16-bit in a narrow range.  Sisters
                   touch with at most a faint bright line that forms over a few frames.
   nuclei_fluo     nuclei of varied size and brightness moving on a dark background; some
-                  divide (condense and elongate, pinch into two touching daughters that
+                  divide (condense and elongate, then two daughters a thin gap apart (--gap) that
                   separate over a few frames); some enter or leave at the border.
 
 Truth is exact: every pixel is labelled by the rendered shape that covers it (the nearest
@@ -259,6 +259,7 @@ def bacteria_phase(seed, frames, size):
 
 
 # ------------------------------------------------------------------------ nuclei
+GAP = 1.5  # px between the daughters' outlines in their first frame (--gap)
 def nuclei_fluo(seed, frames, size):
     rng = np.random.default_rng(seed)
     h = w = size
@@ -293,9 +294,12 @@ def nuclei_fluo(seed, frames, size):
                 if c["tdiv"] is not None and t == c["tdiv"]:
                     d = np.array([np.cos(c["ang"]), np.sin(c["ang"])])
                     rd = c["r0"] * 0.55
+                    # Anaphase: the two chromatin masses already apart by a thin gap
+                    # (blurred, a dip rather than background) along the mother's axis.
+                    off = rd * np.sqrt(1.15) + GAP / 2
                     kids = []
                     for sgn in (-1, 1):
-                        k = nucleus(c["pos"] + sgn * d * rd * 0.95, r=rd, parent=c["id"], born=t, vel=c["vel"].copy())
+                        k = nucleus(c["pos"] + sgn * d * off, r=rd, parent=c["id"], born=t, vel=c["vel"].copy())
                         k.update(ang=c["ang"], asp=1.15, bright=min(1.0, c["bright"] * 1.6), r0=c["r0"] * rng.uniform(0.7, 0.8),
                                  tdiv=None, split=(sgn, d))
                         kids.append(k)
@@ -460,7 +464,10 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--frames", type=int, default=None)
     ap.add_argument("--size", type=int, default=None)
+    ap.add_argument("--gap", type=float, default=GAP,
+                    help="nuclei_fluo: px between sister nuclei in their first frame (0: touching)")
     a = ap.parse_args()
+    globals()["GAP"] = a.gap
     frames = a.frames or (50 if a.family == "bacteria_phase" else 60)
     size = a.size or (256 if a.family == "bacteria_phase" else 420)
     if frames < 2 or size < 64:
