@@ -26,7 +26,10 @@
 //! - a seed where a cell was the frame before, on ground that cell's contour has left,
 //!   is a daughter that came apart from it (a condensing nucleus pinches one daughter
 //!   off dimly, and the contour lets go of it instead of splitting): the mother divided,
-//!   into the piece under her contour and that seed's cell.
+//!   into the piece under her contour and that seed's cell;
+//! - a cell whose outline has a neck with the image brighter along it ([`neck`]) is cut
+//!   there: sister rods touching end to end never pinch apart in the image, so no split
+//!   event comes, and the cut is their division (children of the mother, as a split's).
 //!
 //! Memory holds the frame being tracked and the contours and labels of the one before.
 
