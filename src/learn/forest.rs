@@ -129,13 +129,11 @@ impl Predictor<'_> {
         assert!(
             planes.len() == self.forest.features && planes.iter().all(|p| p.len() >= start + len)
         );
-        // A chunk of neighbouring pixels through every tree: their feature values are
-        // read where they lie, feature by feature, so the eight lanes of a walk that
-        // test one feature read one cache line, and the chunk stays in cache across
-        // the trees.
-        // The chunk copied into one buffer, feature f of pixel k at f · CHUNK + k: a
-        // walk's value is then one load after its step's, not two (the feature's
-        // slice, then the value), and the walks are chains of dependent loads.
+        // A chunk of neighbouring pixels through every tree, copied into one buffer
+        // (feature f of pixel k at f · CHUNK + k): the eight lanes of a walk that test
+        // one feature read one cache line, the chunk stays in cache across the trees,
+        // and a walk's value is one load after its step's, not two (the feature's
+        // slice, then the value), in walks that are chains of dependent loads.
         let mut buf = vec![0.0f32; planes.len() * CHUNK];
         for from in (0..len).step_by(CHUNK) {
             let n = CHUNK.min(len - from);
