@@ -177,7 +177,7 @@ impl Classifier {
         let (w, h) = (features.width, features.height);
         let c = self.labels.len();
         let planes: Vec<&[f32]> = features.planes.iter().map(|p| p.as_slice()).collect();
-        let mut data = vec![0.0f32; w * h * c];
+        let mut data = filters::written_zeros(w * h * c);
         // Laid out once for all rows, not once per row.
         let forest = self.forest.predictor();
         filters::for_rows(&mut data, w * c, |y, row| {
