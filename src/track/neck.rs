@@ -8,7 +8,8 @@
 //! times it: a mother's last waist is as narrow as some necks at birth, and the line is
 //! faint at birth. So the cut is the shortest chord between two ring points far apart
 //! along the ring, taken when both lobes it leaves are rods and the chord is narrower
-//! than [`NARROW`] of the rods' width plus the [`septum`] share: a neck at half the
+//! than [`NARROW`] of the rods' width plus the septum share (how background-like the
+//! image is along the chord, 0 inside a cell, 1 outside): a neck at half the
 //! width is cut only with a line along it, a full-width contact with a full line (rods
 //! side by side that turned apart). A straight or bent single rod, a kidney and an
 //! ellipse have no such neck and no line along it; round lobes (a pinching nucleus,
