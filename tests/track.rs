@@ -243,3 +243,31 @@ fn a_cell_leaving_ends_its_track() {
         .collect();
     assert_eq!(track(&frames), "1 0 5 0\n2 0 2 0\n");
 }
+
+#[test]
+fn a_brighter_corner_of_uneven_light_is_not_a_cell() {
+    // Fluorescence lit unevenly: one corner a shade brighter (a broad ramp, noisy), and
+    // one nucleus. Seeds on the ramp settle into blobs barely apart from their
+    // surroundings; only the nucleus is a cell.
+    let mut state = 12345u64;
+    let mut noise = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((state >> 33) as f64 / (1u64 << 31) as f64 - 0.5) as f32 * 0.3
+    };
+    let frames: Vec<Field> = (0..3)
+        .map(|t| {
+            let mut f = frame(&[disk(30.0 + t as f64, 32.0, 9.0)]);
+            for y in 0..H {
+                for x in 0..W {
+                    let ramp =
+                        ((x as f32 - 60.0) / 36.0).max(0.0) * ((40.0 - y as f32) / 40.0).max(0.0);
+                    f.data[y * W + x] += 0.3 * ramp + noise();
+                }
+            }
+            f
+        })
+        .collect();
+    assert_eq!(track(&frames), "1 0 2 0\n");
+}

@@ -29,11 +29,15 @@
 //!   into the piece under her contour and that seed's cell;
 //! - a cell whose outline has a neck with the image brighter along it ([`neck`]) is cut
 //!   there: sister rods touching end to end never pinch apart in the image, so no split
-//!   event comes, and the cut is their division (children of the mother, as a split's).
+//!   event comes, and the cut is their division (children of the mother, as a split's);
+//! - a new cell (on frame 0 or picked up later) that does not stand out from the band
+//!   around it ([`contrast`]) is dropped: seeds on a gently darker corner of uneven
+//!   light settle into such blobs.
 //!
 //! Memory holds the frame being tracked and the contours and labels of the one before.
 
 pub mod carry;
+pub mod contrast;
 pub mod lineage;
 pub mod neck;
 mod resume;
@@ -216,7 +220,9 @@ impl Tracker {
             divisions: Vec::new(),
             evolution_frames,
         };
-        for (owner, group) in claim(&origins, pieces) {
+        let groups = claim(&origins, pieces);
+        let groups = self.without_faint(groups, image);
+        for (owner, group) in groups {
             // Sisters touching end to end never pinch apart in the image: cut at necks.
             let mut cut: Vec<TrackedObject> = Vec::with_capacity(group.len());
             for o in group {
@@ -353,6 +359,40 @@ impl Tracker {
     /// Gives the pieces of one shape their tracks: the same track for one piece of a
     /// tracked cell, two children for two or more (the two largest; any further piece
     /// starts a track of its own), new tracks for the pieces of a new seed.
+    /// `groups` without the new cells that do not stand out from their surroundings
+    /// ([`contrast`]).
+    fn without_faint(
+        &self,
+        groups: Vec<(Option<u32>, Vec<TrackedObject>)>,
+        image: &Field,
+    ) -> Vec<(Option<u32>, Vec<TrackedObject>)> {
+        let (w, h) = (image.width, image.height);
+        let all: Vec<&TrackedObject> = groups.iter().flat_map(|(_, g)| g).collect();
+        let rings: Vec<(u32, &[Point])> = all
+            .iter()
+            .enumerate()
+            .map(|(k, o)| (k as u32 + 1, o.ring.as_slice()))
+            .collect();
+        let raster = label_raster(&rings, w, h);
+        let polarity = self.settings.params.polarity;
+        let mut k = 0u32;
+        groups
+            .into_iter()
+            .map(|(owner, group)| {
+                let group = group
+                    .into_iter()
+                    .filter(|o| {
+                        k += 1;
+                        owner.is_some()
+                            || contrast::separation(&o.ring, k, &raster, image, polarity)
+                                .is_none_or(|z| z >= contrast::MIN_SEPARATION)
+                    })
+                    .collect();
+                (owner, group)
+            })
+            .collect()
+    }
+
     fn settle(&mut self, owner: Option<u32>, group: Vec<TrackedObject>, frame: &mut TrackedFrame) {
         let t = frame.frame;
         let mut labels: Vec<u32> = Vec::with_capacity(group.len());
