@@ -22,7 +22,7 @@ pub(in crate::app) fn label_color(l: u8) -> Color32 {
 #[derive(Default)]
 pub struct TrainTextures {
     /// The map's key, whether it is the preview, and its texture.
-    map: Option<(((u64, usize), bool), egui::TextureHandle)>,
+    map: Option<((crate::app::train::Key, bool), egui::TextureHandle)>,
     strokes: Option<(u64, egui::TextureHandle)>,
 }
 
