@@ -26,9 +26,20 @@ impl Plane {
         Plane {
             width,
             height,
-            data: vec![0.0; width * height],
+            data: written_zeros(width * height),
         }
     }
+}
+
+/// `n` zeros written to memory, not `vec![0.0; n]`: that asks the kernel for zeroed
+/// pages, which a filter's first `+=` reads (mapping the shared zero page) and then
+/// writes, a second page fault that flushes every core's TLB. perf put a quarter of
+/// the features' and prediction's CPU time in those faults (docs/decisions.md,
+/// 2026-12-02).
+pub fn written_zeros(n: usize) -> Vec<f32> {
+    let mut v = Vec::with_capacity(n);
+    v.resize(n, 0.0);
+    v
 }
 
 /// Which Gaussian: the smoothing, or its first or second derivative.
@@ -157,6 +168,54 @@ where
     bands.into_iter().enumerate().for_each(run);
 }
 
+/// Whether kernel `k` is even (`Some(1.0)`: k(t) = k(−t)), odd (`Some(-1.0)`: k(t) =
+/// −k(−t)) or neither. [`kernel`]'s are exactly one of the first two.
+fn parity(k: &[f32]) -> Option<f32> {
+    let n = k.len();
+    if n.is_multiple_of(2) {
+        return None;
+    }
+    [1.0f32, -1.0]
+        .into_iter()
+        .find(|&s| (0..n / 2).all(|t| k[n - 1 - t] == s * k[t]))
+}
+
+/// out = Σ_j k[j] · taps(j), element by element, over rows of equal length; with a
+/// symmetric kernel the taps at ±t are added (or subtracted) first, so each pair costs
+/// one multiply: Gaussians and their derivatives are, and the filters are the features'
+/// main cost.
+fn correlate<'a>(out: &mut [f32], k: &[f32], taps: impl Fn(usize) -> &'a [f32]) {
+    let r = k.len() / 2;
+    match parity(k) {
+        Some(sign) => {
+            let kc = k[r];
+            for (o, &c) in out.iter_mut().zip(taps(r)) {
+                *o = kc * c;
+            }
+            for t in 1..=r {
+                let (kt, lo, hi) = (k[r + t], taps(r - t), taps(r + t));
+                if sign > 0.0 {
+                    for ((o, &a), &b) in out.iter_mut().zip(lo).zip(hi) {
+                        *o += kt * (b + a);
+                    }
+                } else {
+                    for ((o, &a), &b) in out.iter_mut().zip(lo).zip(hi) {
+                        *o += kt * (b - a);
+                    }
+                }
+            }
+        }
+        None => {
+            out.fill(0.0);
+            for (j, &kj) in k.iter().enumerate() {
+                for (o, &p) in out.iter_mut().zip(taps(j)) {
+                    *o += kj * p;
+                }
+            }
+        }
+    }
+}
+
 /// Correlates every row of `src` with `k` (reflected borders).
 pub fn along_rows(src: &Plane, k: &[f32]) -> Plane {
     let (w, h) = (src.width, src.height);
@@ -169,12 +228,8 @@ pub fn along_rows(src: &Plane, k: &[f32]) -> Plane {
         padded.extend((0..r).map(|i| line[reflect(i as isize - r as isize, w)]));
         padded.extend_from_slice(line);
         padded.extend((0..r).map(|i| line[reflect((w + i) as isize, w)]));
-        // Tap by tap over the whole row: the inner loop vectorises.
-        for (j, &kj) in k.iter().enumerate() {
-            for (o, &p) in row.iter_mut().zip(&padded[j..j + w]) {
-                *o += kj * p;
-            }
-        }
+        // Tap by tap over the whole row: the inner loops vectorise.
+        correlate(row, k, |j| &padded[j..j + w]);
     });
     out
 }
@@ -193,12 +248,10 @@ pub fn along_columns_many(src: &Plane, ks: &[&[f32]]) -> Vec<Plane> {
     for_rows_many(&mut outs, w, |y, rows| {
         for (row, k) in rows.iter_mut().zip(ks) {
             let r = k.len() as isize / 2;
-            for (j, &kj) in k.iter().enumerate() {
+            correlate(row, k, |j| {
                 let sy = reflect(y as isize + j as isize - r, h);
-                for (o, &s) in row.iter_mut().zip(&src.data[sy * w..(sy + 1) * w]) {
-                    *o += kj * s;
-                }
-            }
+                &src.data[sy * w..(sy + 1) * w]
+            });
         }
     });
     out

@@ -21,8 +21,9 @@
 //!   trees here are shallow: 1.1 and 2.5 splits per pixel and tree on two public
 //!   cases; left or right is an index, not a branch, since no predictor can guess
 //!   it): the walks' loads overlap, the one branch is predictable (neighbours
-//!   mostly end in leaves of one depth), and the chunk's features stay in cache
-//!   across the trees; the walk indexes without bounds checks (its indices are made
+//!   mostly end in leaves of one depth), and the chunk's features, copied into one
+//!   buffer so that a step's value is one load away from it, stay in cache across
+//!   the trees; the walk indexes without bounds checks (its indices are made
 //!   in range once per image, where [`Forest::predictor`] lays the forest out) and a
 //!   leaf's values lie at its own index, not behind a lookup.
 //!
@@ -81,6 +82,7 @@ const LEAF: u32 = 1 << 31;
 /// are leaves, so the walk sees that all its lanes have arrived without reading a node.
 #[derive(Clone, Copy)]
 struct Step {
+    /// Where the feature's values start in a chunk's buffer: its index · [`CHUNK`].
     feature: u32,
     threshold: f32,
     /// Left (values ≤ threshold), right.
@@ -127,17 +129,19 @@ impl Predictor<'_> {
         assert!(
             planes.len() == self.forest.features && planes.iter().all(|p| p.len() >= start + len)
         );
-        // A chunk of neighbouring pixels through every tree: their feature values are
-        // read where they lie, feature by feature, so the eight lanes of a walk that
-        // test one feature read one cache line, and the chunk stays in cache across
-        // the trees.
-        let mut cols: Vec<&[f32]> = Vec::with_capacity(planes.len());
+        // A chunk of neighbouring pixels through every tree, copied into one buffer
+        // (feature f of pixel k at f · CHUNK + k): the eight lanes of a walk that test
+        // one feature read one cache line, the chunk stays in cache across the trees,
+        // and a walk's value is one load after its step's, not two (the feature's
+        // slice, then the value), in walks that are chains of dependent loads.
+        let mut buf = vec![0.0f32; planes.len() * CHUNK];
         for from in (0..len).step_by(CHUNK) {
             let n = CHUNK.min(len - from);
-            cols.clear();
-            cols.extend(planes.iter().map(|p| &p[start + from..start + from + n]));
+            for (dst, p) in buf.chunks_exact_mut(CHUNK).zip(planes) {
+                dst[..n].copy_from_slice(&p[start + from..start + from + n]);
+            }
             self.forest
-                .walk_chunk(&cols, &mut out[from * c..(from + n) * c], &self.walk);
+                .walk_chunk(&buf, &mut out[from * c..(from + n) * c], &self.walk);
         }
     }
 }
@@ -407,13 +411,13 @@ impl Forest {
         }
     }
 
-    /// Every tree over the pixels of `cols` (feature f of pixel k at `cols[f][k]`),
-    /// summed into `out`.
-    fn walk_chunk(&self, cols: &[&[f32]], out: &mut [f32], walk: &Walk) {
+    /// Every tree over the pixels of `buf` (feature f of pixel k at `buf[f · CHUNK +
+    /// k]`, k < CHUNK), summed into `out`.
+    fn walk_chunk(&self, buf: &[f32], out: &mut [f32], walk: &Walk) {
         const LANES: usize = 8;
         let c = self.classes;
         let n = out.len() / c;
-        assert!(n > 0 && cols.len() == self.features && cols.iter().all(|col| col.len() >= n));
+        assert!(n > 0 && n <= CHUNK && buf.len() == self.features * CHUNK);
         let steps = &walk.steps[..];
         let values = &walk.values[..];
         for (&(_, depth), &start) in self.roots.iter().zip(&walk.roots) {
@@ -431,19 +435,20 @@ impl Forest {
                     }
                     for k in 0..LANES {
                         // SAFETY: `Forest::walk` made every index a step holds (root,
-                        // children) below `steps.len()` and every feature below
-                        // `self.features`, which is `cols.len()` (asserted above, as
-                        // px[k] < n ≤ every column's length).
+                        // children) below `steps.len()` and every `feature` (an offset
+                        // f · CHUNK) below `self.features · CHUNK`, which is
+                        // `buf.len()` (asserted above), and px[k] < n ≤ CHUNK.
                         let (s, v) = unsafe {
                             let s = *steps.get_unchecked((at[k] & !LEAF) as usize);
-                            let v = *cols.get_unchecked(s.feature as usize).get_unchecked(px[k]);
+                            let v = *buf.get_unchecked(s.feature as usize + px[k]);
                             (s, v)
                         };
-                        // Values ≤ the threshold go left, NaN right: the sign of
-                        // t − v (exact: zero only when they are equal), an index
-                        // rather than a branch that no predictor could guess.
-                        let right = ((s.threshold - v).to_bits() >> 31) | v.is_nan() as u32;
-                        at[k] = s.child[right as usize];
+                        // Values ≤ the threshold go left, NaN right (so "not ≤", not
+                        // ">"): an index rather than a branch that no predictor could
+                        // guess.
+                        #[allow(clippy::neg_cmp_op_on_partial_ord)]
+                        let right = !(v <= s.threshold) as usize;
+                        at[k] = s.child[right];
                     }
                 }
                 for (k, &a) in at.iter().enumerate().take(lanes) {
@@ -477,6 +482,10 @@ impl Forest {
         let c = self.classes;
         assert!(n < LEAF as usize, "node count");
         assert!(self.features > 0, "a forest without features");
+        assert!(
+            self.features.saturating_mul(CHUNK) <= u32::MAX as usize,
+            "feature count"
+        );
         assert!(
             self.roots.iter().all(|&(r, _)| (r as usize) < n),
             "a root out of range"
@@ -513,7 +522,7 @@ impl Forest {
                 .map(|(i, nd)| {
                     if fits(nd) {
                         Step {
-                            feature: nd.feature,
+                            feature: nd.feature * CHUNK as u32,
                             threshold: nd.threshold,
                             child: [mark(nd.left), mark(nd.right)],
                         }

@@ -177,7 +177,7 @@ impl Classifier {
         let (w, h) = (features.width, features.height);
         let c = self.labels.len();
         let planes: Vec<&[f32]> = features.planes.iter().map(|p| p.as_slice()).collect();
-        let mut data = vec![0.0f32; w * h * c];
+        let mut data = filters::written_zeros(w * h * c);
         // Laid out once for all rows, not once per row.
         let forest = self.forest.predictor();
         filters::for_rows(&mut data, w * c, |y, row| {
@@ -210,7 +210,7 @@ impl Classifier {
         let (hw, hh) = (w.div_ceil(2), h.div_ceil(2));
         let c = self.labels.len();
         let forest = self.forest.predictor();
-        let mut data = vec![0.0f32; hw * hh * c];
+        let mut data = filters::written_zeros(hw * hh * c);
         filters::for_rows(&mut data, hw * c, |y, row| {
             if stop() {
                 return;
@@ -246,7 +246,7 @@ impl Classifier {
         );
         let planes: Vec<&[f32]> = features.planes.iter().map(|p| p.as_slice()).collect();
         let forest = self.forest.predictor();
-        let mut data = vec![0.0f32; w * h * c];
+        let mut data = filters::written_zeros(w * h * c);
         filters::for_rows(&mut data, w * c, |y, row| {
             if stop() {
                 return;
