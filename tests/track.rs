@@ -77,6 +77,132 @@ fn a_dividing_rod_gives_two_children_of_its_track() {
     assert_eq!(track(&frames), "1 0 3 0\n2 4 7 1\n3 4 7 1\n");
 }
 
+/// `f` with a line of value `v` and half-width 0.8 from `a` to `b` where it crosses a
+/// cell (the bright contact line of phase contrast where two cells meet, here toward the
+/// dark background).
+fn with_line(mut f: Field, a: Point, b: Point, v: f32) -> Field {
+    for y in 0..H {
+        for x in 0..W {
+            let p = Point::new(x as f64 + 0.5, y as f64 + 0.5);
+            let d = b - a;
+            let t = ((p - a).dot(d) / d.norm2()).clamp(0.0, 1.0);
+            if p.dist(a + d * t) <= 0.8 && f.data[y * W + x] > 0.5 {
+                f.data[y * W + x] = v;
+            }
+        }
+    }
+    f
+}
+
+/// `f` blurred by [1 2 1]/4 along x and y (σ ≈ 0.7, a microscope's blur, which
+/// fills the notches where two caps meet with background).
+fn blurred(f: Field) -> Field {
+    let mut d = f.data;
+    for _ in 0..1 {
+        for (sx, sy) in [(1usize, 0usize), (0, 1)] {
+            let src = d.clone();
+            for y in 0..H {
+                for x in 0..W {
+                    let at = |dx: isize, dy: isize| {
+                        let xx = (x as isize + dx).clamp(0, W as isize - 1) as usize;
+                        let yy = (y as isize + dy).clamp(0, H as isize - 1) as usize;
+                        src[yy * W + xx]
+                    };
+                    let (sx, sy) = (sx as isize, sy as isize);
+                    d[y * W + x] = 0.25 * at(-sx, -sy) + 0.5 * at(0, 0) + 0.25 * at(sx, sy);
+                }
+            }
+        }
+    }
+    Field::new(W, H, d)
+}
+
+/// A straight rod growing (frames 0–2), then two sister rods end to end from frame 3
+/// whose caps are `overlap` px into each other, with a contact line of value `line`
+/// across the neck (cells are 0.85, background 0.15); blurred.
+fn sisters(overlap: f64, line: Option<f32>) -> Vec<Field> {
+    let mother = |half: f64| {
+        (
+            Point::new(48.0 - half, 32.0),
+            Point::new(48.0 + half, 32.0),
+            5.0,
+        )
+    };
+    let mut frames: Vec<Field> = [12.0, 14.0, 16.0]
+        .map(|h| blurred(frame(&[mother(h)])))
+        .into();
+    for grow in [0.0, 1.0, 2.0] {
+        let c = 5.0 - overlap / 2.0;
+        let l = (
+            Point::new(32.0 - grow, 32.0),
+            Point::new(48.0 - c, 32.0),
+            5.0,
+        );
+        let r = (
+            Point::new(48.0 + c, 32.0),
+            Point::new(64.0 + grow, 32.0),
+            5.0,
+        );
+        let f = frame(&[l, r]);
+        frames.push(blurred(match line {
+            Some(v) => with_line(f, Point::new(48.0, 25.0), Point::new(48.0, 39.0), v),
+            None => f,
+        }));
+    }
+    frames
+}
+
+#[test]
+fn sister_rods_touching_end_to_end_are_two_children() {
+    // Phase-contrast bacteria: the daughters stay in contact tip to tip, no background
+    // between them, so the contour never pinches; the neck between the caps, where the
+    // contact line is only starting to show (a third of the way to the background), is cut.
+    assert_eq!(
+        track(&sisters(0.0, Some(0.6))),
+        "1 0 2 0\n2 3 5 1\n3 3 5 1\n"
+    );
+}
+
+#[test]
+fn sisters_with_a_wide_contact_are_cut_at_their_line_and_a_waist_is_not() {
+    // Caps 4 px into each other: a neck of 0.8 widths, as wide as a constricting
+    // mother's waist. With the contact line across it, two daughters; without, one cell.
+    assert_eq!(
+        track(&sisters(4.0, Some(0.15))),
+        "1 0 2 0\n2 3 5 1\n3 3 5 1\n"
+    );
+    assert_eq!(track(&sisters(4.0, None)), "1 0 5 0\n");
+}
+
+#[test]
+fn a_bent_rod_and_a_kidney_are_not_cut() {
+    // A rod bent at a right angle, and a kidney (a thick arc): elongated lobes on either
+    // side of the bend, but no neck narrower than the cell and no line along it.
+    let bent = |t: f64| {
+        let k = Point::new(30.0 + t, 40.0);
+        vec![
+            (Point::new(12.0 + t, 40.0), k, 6.0),
+            (k, Point::new(30.0 + t, 18.0), 6.0),
+        ]
+    };
+    let kidney = |t: f64| {
+        let (c, r) = (Point::new(66.0 + t, 50.0), 18.0);
+        let at = |k: usize| {
+            let a = std::f64::consts::PI * (1.15 + 0.7 * k as f64 / 8.0);
+            Point::new(c.x + r * a.cos(), c.y + r * a.sin())
+        };
+        (0..8).map(|k| (at(k), at(k + 1), 7.0)).collect::<Vec<_>>()
+    };
+    let frames: Vec<Field> = (0..5)
+        .map(|t| {
+            let mut cells = bent(t as f64);
+            cells.extend(kidney(t as f64));
+            frame(&cells)
+        })
+        .collect();
+    assert_eq!(track(&frames), "1 0 4 0\n2 0 4 0\n");
+}
+
 #[test]
 fn two_touching_cells_stay_two() {
     let frames: Vec<Field> = (0..5)

@@ -26,12 +26,16 @@
 //! - a seed where a cell was the frame before, on ground that cell's contour has left,
 //!   is a daughter that came apart from it (a condensing nucleus pinches one daughter
 //!   off dimly, and the contour lets go of it instead of splitting): the mother divided,
-//!   into the piece under her contour and that seed's cell.
+//!   into the piece under her contour and that seed's cell;
+//! - a cell whose outline has a neck with the image brighter along it ([`neck`]) is cut
+//!   there: sister rods touching end to end never pinch apart in the image, so no split
+//!   event comes, and the cut is their division (children of the mother, as a split's).
 //!
 //! Memory holds the frame being tracked and the contours and labels of the one before.
 
 pub mod carry;
 pub mod lineage;
+pub mod neck;
 mod resume;
 
 pub use lineage::{Division, Lineage, Track};
@@ -213,6 +217,18 @@ impl Tracker {
             evolution_frames,
         };
         for (owner, group) in claim(&origins, pieces) {
+            // Sisters touching end to end never pinch apart in the image: cut at necks.
+            let mut cut: Vec<TrackedObject> = Vec::with_capacity(group.len());
+            for o in group {
+                let rings = neck::cut_at_necks(o.ring.clone(), image);
+                if rings.len() == 1 {
+                    cut.push(o);
+                } else {
+                    cut.extend(rings.into_iter().map(object));
+                }
+            }
+            cut.sort_by(|x, y| y.area.total_cmp(&x.area));
+            let group = cut;
             self.settle(owner, group, &mut frame);
         }
         frame.objects.sort_by_key(|o| o.track);
@@ -364,6 +380,23 @@ impl Tracker {
             o.track = label;
             frame.objects.push(o);
         }
+    }
+}
+
+/// A cell of outline `ring` (region on the left), not yet given its track.
+fn object(ring: Vec<Point>) -> TrackedObject {
+    let (mut a2, mut c) = (0.0, Point::default());
+    for i in 0..ring.len() {
+        let (p, q) = (ring[i], ring[(i + 1) % ring.len()]);
+        let k = p.cross(q);
+        a2 += k;
+        c = c + (p + q) * k;
+    }
+    TrackedObject {
+        track: 0,
+        area: 0.5 * a2,
+        centroid: c * (1.0 / (3.0 * a2)),
+        ring,
     }
 }
 

@@ -1,0 +1,309 @@
+//! Sister rods that touch end to end are two cells: phase-contrast bacteria divide by a
+//! septum, and the daughters stay in contact tip to tip with no background between them,
+//! so the contour never pinches and the split event never comes (the tracking policy
+//! keeps it whole). Both the outline and the image show the division: the outline has a
+//! neck (at birth two caps meet; before, the mother's waist narrows to about half her
+//! width), and the image along the neck turns from the cell's own dark to a brighter
+//! line (the caps' notches blurred together, then the contact line). Neither alone
+//! times it: a mother's last waist is as narrow as some necks at birth, and the line is
+//! faint at birth. So the cut is the shortest chord between two ring points far apart
+//! along the ring, taken when both lobes it leaves are rods and the chord is narrower
+//! than [`NARROW`] of the rods' width plus the septum share (how background-like the
+//! image is along the chord, 0 inside a cell, 1 outside): a neck at half the
+//! width is cut only with a line along it, a full-width contact with a full line (rods
+//! side by side that turned apart). A straight or bent single rod, a kidney and an
+//! ellipse have no such neck and no line along it; round lobes (a pinching nucleus,
+//! which the contour splits by itself once the daughters part) are never cut.
+//!
+//! The cut is Icy's "opposite points come close" heuristic (de Chaumont et al. 2012,
+//! Active Contours plugin) made selective by the image; the pieces are reported as a
+//! division like a split of the topology core.
+
+use crate::geometry::{
+    segment_intersection, signed_area, winding_number, Point, SegmentIntersection,
+};
+use crate::image::Field;
+use crate::track::MIN_DAUGHTER_SHARE;
+
+/// The widest neck cut with no line along it, as a share of the thinner rod's width
+/// (the mother's waist before division is wider; two caps just meeting are narrower).
+/// Fitted on synthetic phase-contrast movies (seeds 1, 2): see docs/decisions.md.
+pub const NARROW: f64 = 0.47;
+
+/// Each lobe at least this elongated (major over minor axis of its second moments): a
+/// rod. A nucleus pinches into round lobes, and the contour splits it by itself when
+/// the daughters part; cutting it at a neck would be early.
+pub const MIN_LOBE_ASPECT: f64 = 1.5;
+
+/// How far (pixels) a neck's ends must be from the frame's edge.
+pub const EDGE_MARGIN: f64 = 3.0;
+
+/// The most pieces one outline is cut into in one frame.
+pub const MAX_PIECES: usize = 16;
+
+/// `ring` cut at its necks until none is left (a chain of touching rods is cut at each
+/// contact), at most [`MAX_PIECES`] pieces, largest first.
+pub fn cut_at_necks(ring: Vec<Point>, image: &Field) -> Vec<Vec<Point>> {
+    let (mut done, mut todo) = (Vec::new(), vec![ring]);
+    while let Some(r) = todo.pop() {
+        match (done.len() + todo.len() + 1 < MAX_PIECES)
+            .then(|| neck_cut(&r, image))
+            .flatten()
+        {
+            Some((a, b)) => todo.extend([a, b]),
+            None => done.push(r),
+        }
+    }
+    done.sort_by(|a, b| signed_area(b).total_cmp(&signed_area(a)));
+    done
+}
+
+/// The two lobes of `ring` (region on the left) cut at its neck, each a ring with the
+/// region on the left, or `None` when it has none.
+pub fn neck_cut(ring: &[Point], image: &Field) -> Option<(Vec<Point>, Vec<Point>)> {
+    let n = ring.len();
+    if n < 8 {
+        return None;
+    }
+    let mut arc = vec![0.0; n + 1];
+    for i in 0..n {
+        arc[i + 1] = arc[i] + ring[i].dist(ring[(i + 1) % n]);
+    }
+    let per = arc[n];
+    // The shortest chord whose ends are at least a fifth of the perimeter apart both ways.
+    let mut best: Option<(f64, usize, usize)> = None;
+    for i in 0..n {
+        for j in i + 1..n {
+            let a = arc[j] - arc[i];
+            if a.min(per - a) < 0.2 * per {
+                continue;
+            }
+            let d = ring[i].dist(ring[j]);
+            if best.is_none_or(|b| d < b.0) {
+                best = Some((d, i, j));
+            }
+        }
+    }
+    let (d, i, j) = best?;
+    // A cell cut off by the frame's edge is not measured across it (its outline runs
+    // along the edge, and the band outside is not in the image).
+    let (w, h) = (image.width as f64, image.height as f64);
+    let off_edge = |p: Point| p.x.min(p.y).min(w - p.x).min(h - p.y) >= EDGE_MARGIN;
+    if !off_edge(ring[i]) || !off_edge(ring[j]) {
+        return None;
+    }
+    let a: Vec<Point> = ring[i..=j].to_vec();
+    let b: Vec<Point> = ring[j..].iter().chain(&ring[..=i]).copied().collect();
+    // The chord runs inside the cell (not across a bay outside it).
+    let mid = (ring[i] + ring[j]) * 0.5;
+    if winding_number(ring, mid) == 0 {
+        return None;
+    }
+    let (aa, ab) = (signed_area(&a), signed_area(&b));
+    if aa <= 0.0 || ab <= 0.0 || aa.min(ab) < MIN_DAUGHTER_SHARE * aa.max(ab) {
+        return None;
+    }
+    // The chord crosses no other edge: both lobes are simple.
+    let crosses = (0..n).any(|k| {
+        let l = (k + 1) % n;
+        ![i, j].contains(&k)
+            && ![i, j].contains(&l)
+            && !matches!(
+                segment_intersection(ring[i], ring[j], ring[k], ring[l]),
+                SegmentIntersection::None
+            )
+    });
+    if crosses {
+        return None;
+    }
+    let (la, lb) = (elongation(&a), elongation(&b));
+    if la.0 < MIN_LOBE_ASPECT || lb.0 < MIN_LOBE_ASPECT {
+        return None;
+    }
+    let width = la.1.min(lb.1);
+    (d < (NARROW + septum(ring, &a, &b, ring[i], ring[j], image)) * width).then_some((a, b))
+}
+
+/// How background-like the image is along the middle half of the chord `p`–`q`: 0 as
+/// dark as the lobes' cores, 1 as the band just outside the outline (a septum line or
+/// the gap between two touching caps; a constricting waist is still the cell's own).
+fn septum(ring: &[Point], a: &[Point], b: &[Point], p: Point, q: Point, image: &Field) -> f64 {
+    let mean = |pts: &mut dyn Iterator<Item = Point>| {
+        let (mut s, mut n) = (0.0, 0usize);
+        for x in pts {
+            s += image.sample(x);
+            n += 1;
+        }
+        s / n.max(1) as f64
+    };
+    let core = |l: &[Point]| {
+        let c = centroid(l);
+        let axis = elongation(l).2;
+        mean(&mut (-2..=2).map(move |k| c + axis * (k as f64)))
+    };
+    let inside = 0.5 * (core(a) + core(b));
+    let n = ring.len();
+    let (w, h) = (image.width as f64, image.height as f64);
+    let outside = mean(
+        &mut (0..n)
+            .map(|k| {
+                let t = ring[(k + 1) % n] - ring[(k + n - 1) % n];
+                let out = Point::new(t.y, -t.x) * (1.0 / t.norm().max(1e-9));
+                ring[k] + out * 3.0
+            })
+            .filter(|p| p.x >= 0.0 && p.y >= 0.0 && p.x < w && p.y < h),
+    );
+    let chord = mean(&mut (0..=8).map(|k| p + (q - p) * (0.25 + 0.5 * k as f64 / 8.0)));
+    let span = outside - inside;
+    if span.abs() < 1e-9 {
+        return 0.0;
+    }
+    (chord - inside) / span
+}
+
+fn centroid(p: &[Point]) -> Point {
+    let n = p.len();
+    let (mut a2, mut c) = (0.0, Point::default());
+    for i in 0..n {
+        let (u, v) = (p[i], p[(i + 1) % n]);
+        let k = u.cross(v);
+        a2 += k;
+        c = c + (u + v) * k;
+    }
+    c * (1.0 / (3.0 * a2))
+}
+
+/// The aspect (major over minor axis) of polygon `p`'s second moments, its width across
+/// the major axis (a band's, √(12 × minor moment / area)) and that axis (unit).
+fn elongation(p: &[Point]) -> (f64, f64, Point) {
+    let n = p.len();
+    let (mut a2, mut c) = (0.0, Point::default());
+    for i in 0..n {
+        let (u, v) = (p[i], p[(i + 1) % n]);
+        let k = u.cross(v);
+        a2 += k;
+        c = c + (u + v) * k;
+    }
+    if a2.abs() < 1e-9 {
+        return (1.0, 0.0, Point::new(1.0, 0.0));
+    }
+    let c = c * (1.0 / (3.0 * a2));
+    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
+    for i in 0..n {
+        let (u, v) = (p[i] - c, p[(i + 1) % n] - c);
+        let k = u.cross(v);
+        sxx += k * (u.y * u.y + u.y * v.y + v.y * v.y);
+        syy += k * (u.x * u.x + u.x * v.x + v.x * v.x);
+        sxy += k * (u.x * v.y + 2.0 * u.x * u.y + 2.0 * v.x * v.y + v.x * u.y);
+    }
+    // Second moments about the centroid (Ixx = ∫y², Iyy = ∫x², Ixy = ∫xy).
+    let (ixx, iyy, ixy) = (sxx / 12.0, syy / 12.0, sxy / 24.0);
+    let (mx, my, mxy) = (iyy, ixx, ixy); // ∫x², ∫y², ∫xy
+    let tr = 0.5 * (mx + my);
+    let disc = (0.25 * (mx - my) * (mx - my) + mxy * mxy).sqrt();
+    let (l1, l2) = (tr + disc, (tr - disc).max(1e-12));
+    let ang = 0.5 * (2.0 * mxy).atan2(mx - my);
+    let area = 0.5 * a2;
+    (
+        (l1 / l2).sqrt(),
+        (12.0 * l2 / area.abs()).sqrt(),
+        Point::new(ang.cos(), ang.sin()),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A capsule (rod) from `c0` to `c1` of radius `r`, region on the left.
+    fn rod(c0: Point, c1: Point, r: f64) -> Vec<Point> {
+        let ang = (c1.y - c0.y).atan2(c1.x - c0.x);
+        let mut pts = Vec::new();
+        for (c, a0) in [
+            (c1, ang - std::f64::consts::FRAC_PI_2),
+            (c0, ang + std::f64::consts::FRAC_PI_2),
+        ] {
+            for k in 0..=16 {
+                let a = a0 + std::f64::consts::PI * k as f64 / 16.0;
+                pts.push(Point::new(c.x + r * a.cos(), c.y + r * a.sin()));
+            }
+        }
+        pts
+    }
+
+    #[test]
+    fn a_straight_rod_a_disk_and_an_ellipse_are_not_cut() {
+        let img = flat();
+        let straight = rod(Point::new(10.0, 10.0), Point::new(40.0, 10.0), 4.5);
+        assert!(neck_cut(&straight, &img).is_none());
+        let disk: Vec<Point> = (0..64)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 64.0;
+                Point::new(50.0 + 20.0 * a.cos(), 50.0 + 12.0 * a.sin())
+            })
+            .collect();
+        assert!(neck_cut(&disk, &img).is_none());
+    }
+
+    #[test]
+    fn two_rods_end_to_end_are_cut_at_their_neck_and_round_lobes_are_not() {
+        // Two rods of radius 4.5 whose caps overlap by 0.5 px: a neck of about 3, a third
+        // of their width (on a flat image, no line along it: the outline alone).
+        let img = flat();
+        let a = rod(Point::new(10.0, 20.0), Point::new(22.5, 20.0), 4.5);
+        let b = rod(Point::new(31.5, 20.0), Point::new(44.0, 20.0), 4.5);
+        let ring = union_of(&a, &b);
+        let (p, q) = neck_cut(&ring, &img).expect("a neck");
+        let (cp, cq) = (centre(&p), centre(&q));
+        let (lo, hi) = (cp.x.min(cq.x), cp.x.max(cq.x));
+        assert!(
+            (lo - 16.0).abs() < 3.0 && (hi - 38.0).abs() < 3.0,
+            "{cp:?} {cq:?}"
+        );
+        // Two disks on a neck as narrow: a pinching nucleus, left to split by itself.
+        let disk = |cx: f64| -> Vec<Point> {
+            (0..48)
+                .map(|k| {
+                    let t = std::f64::consts::TAU * k as f64 / 48.0;
+                    Point::new(cx + 10.0 * t.cos(), 20.0 + 10.0 * t.sin())
+                })
+                .collect()
+        };
+        assert!(neck_cut(&union_of(&disk(20.0), &disk(39.5)), &img).is_none());
+    }
+
+    /// The outline of the union of two convex rings overlapping a little along x (the
+    /// left one's points right of the overlap's middle dropped, and the right one's left
+    /// of it), region on the left.
+    fn union_of(a: &[Point], b: &[Point]) -> Vec<Point> {
+        let mid = 0.5
+            * (a.iter().map(|p| p.x).fold(f64::MIN, f64::max)
+                + b.iter().map(|p| p.x).fold(f64::MAX, f64::min));
+        let keep = |r: &[Point], left: bool| -> Vec<Point> {
+            let n = r.len();
+            // Start just after the dropped run so the kept points are one arc.
+            let s = (0..n)
+                .find(|&k| (r[k].x > mid) == left && (r[(k + 1) % n].x > mid) != left)
+                .map_or(0, |k| k + 1);
+            (0..n)
+                .map(|k| r[(s + k) % n])
+                .filter(|p| (p.x > mid) != left)
+                .collect()
+        };
+        let mut ring = keep(a, true);
+        ring.extend(keep(b, false));
+        if crate::geometry::signed_area(&ring) < 0.0 {
+            ring.reverse();
+        }
+        ring
+    }
+
+    /// A flat 64² image: no line anywhere, so only the outline decides.
+    fn flat() -> Field {
+        Field::new(64, 64, vec![0.5; 64 * 64])
+    }
+
+    fn centre(p: &[Point]) -> Point {
+        p.iter().fold(Point::default(), |s, &q| s + q) * (1.0 / p.len() as f64)
+    }
+}
