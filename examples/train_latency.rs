@@ -7,10 +7,13 @@
 //! segment painted as the canvas paints it, on a pixel the strokes already label — and
 //! frames are drawn until each stroke's map is the one on screen.
 //!
-//! Prints, per stroke, the wall time from the paint to the map accepted, the trainer's
-//! own figure (request to answer) and the process's CPU seconds meanwhile (all threads,
-//! the frames included); then the medians, and the last strokes trained and predicted
-//! again outside the app (its cost alone, and whether the map is the app's).
+//! Prints, per stroke, what the user sees: the wall time from the paint to the first
+//! frame that drew the map's half-resolution preview and to the frame that drew the
+//! full map (the trainer's own request-to-answer figure beside it), and the process's
+//! CPU seconds meanwhile (all threads, the frames included); then the medians; then
+//! pairs of strokes one frame apart (the second's map; the first is stopped); and the
+//! last strokes trained and predicted again outside the app (its cost alone, and
+//! whether the map is the app's).
 //!
 //! `cargo run --release --features gui --example train_latency -- IMAGE STROKES [N]`
 
@@ -30,19 +33,36 @@ fn cpu_seconds() -> f64 {
     t(u.ru_utime) + t(u.ru_stime)
 }
 
-/// Draws frames until the map of the strokes now painted is the trainer's.
-fn wait_for_map(h: &mut Harness<'_, TopoApp>) {
-    let start = Instant::now();
+/// Draws frames until the map of the strokes now painted is on screen; the wall seconds
+/// from `t0` to the first frame that drew its preview (or the map, when no preview
+/// came first), and to the frame that drew the map.
+fn wait_for_map(h: &mut Harness<'_, TopoApp>, t0: Instant) -> (f64, f64) {
+    let mut preview = None;
     loop {
         h.step();
         let app = h.state();
         let key = app.doc.train.key(app.doc.image.as_ref().expect("image"));
-        if key.is_some_and(|k| app.jobs.trainer.map_of(k).is_some()) {
-            return;
+        let t = t0.elapsed().as_secs_f64();
+        if key.is_some_and(|k| app.jobs.trainer.preview_of(k).is_some()) {
+            preview.get_or_insert(t);
         }
-        assert!(start.elapsed().as_secs() < 120, "no map came");
+        if key.is_some_and(|k| app.jobs.trainer.map_of(k).is_some()) {
+            return (preview.unwrap_or(t), t);
+        }
+        assert!(t < 120.0, "no map came");
         std::thread::sleep(Duration::from_millis(1));
     }
+}
+
+/// Paints a short segment (as the canvas paints a stroke) at labelled pixel `i`.
+fn paint_at(h: &mut Harness<'_, TopoApp>, s: &Strokes, i: usize) {
+    let (w, ht) = (s.width, s.height);
+    let (x, y) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
+    let seg = [Point::new(x - 2.0, y), Point::new(x + 2.0, y)];
+    h.state_mut()
+        .doc
+        .train
+        .paint(seg, 1.5, s.labels[i], (w, ht));
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -86,43 +106,52 @@ fn main() {
     );
     let (c0, t0) = (cpu_seconds(), Instant::now());
     h.state_mut().doc.train = Training::of_strokes(&s);
-    wait_for_map(&mut h);
+    let (p, m) = wait_for_map(&mut h, t0);
     println!(
-        "{w}x{ht}: first map (training, prediction) wall {:.3} s, cpu {:.3} s",
-        t0.elapsed().as_secs_f64(),
+        "{w}x{ht}: first map (training, prediction) preview shown {p:.3} s, map shown {m:.3} s wall, cpu {:.3} s",
         cpu_seconds() - c0
     );
     // Evenly spread labelled pixels: each is where one more stroke goes.
     let labelled: Vec<usize> = (0..w * ht).filter(|&i| s.labels[i] > 0).collect();
-    let (mut walls, mut own, mut cpus) = (Vec::new(), Vec::new(), Vec::new());
+    let at = |k: usize, n: usize| labelled[(2 * k + 1) * labelled.len() / (2 * n)];
+    let (mut previews, mut walls, mut cpus) = (Vec::new(), Vec::new(), Vec::new());
     for k in 0..n {
-        let i = labelled[(2 * k + 1) * labelled.len() / (2 * n)];
-        let (x, y) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
         let (c0, t0) = (cpu_seconds(), Instant::now());
-        let seg = [Point::new(x - 2.0, y), Point::new(x + 2.0, y)];
-        h.state_mut()
-            .doc
-            .train
-            .paint(seg, 1.5, s.labels[i], (w, ht));
-        wait_for_map(&mut h);
-        let wall = t0.elapsed().as_secs_f64();
+        paint_at(&mut h, &s, at(k, n));
+        let (p, wall) = wait_for_map(&mut h, t0);
         let cpu = cpu_seconds() - c0;
         let ms = h.state().jobs.trainer.latency_ms.unwrap_or(f64::NAN);
         println!(
-            "stroke {k} (label {}): map on screen after {:.3} s wall (trainer {:.3} s), cpu {cpu:.3} s",
-            s.labels[i],
-            wall,
+            "stroke {k} (label {}): preview shown {p:.3} s, map shown {wall:.3} s wall (trainer {:.3} s), cpu {cpu:.3} s",
+            s.labels[at(k, n)],
             ms / 1e3
         );
+        previews.push(p);
         walls.push(wall);
-        own.push(ms / 1e3);
         cpus.push(cpu);
     }
     println!(
-        "median of {n} strokes: wall {:.3} s, trainer {:.3} s, cpu {:.3} s",
+        "median of {n} strokes: preview shown {:.3} s, map shown {:.3} s wall, cpu {:.3} s",
+        median(previews),
         median(walls),
-        median(own),
         median(cpus)
+    );
+    // Two strokes one frame apart (the second while the first is trained): the wall
+    // time from the second to its map on screen.
+    let mut pairs = Vec::new();
+    for k in 0..n.min(5) {
+        paint_at(&mut h, &s, at(k, 2 * n));
+        h.step();
+        let t0 = Instant::now();
+        paint_at(&mut h, &s, at(k + n, 2 * n));
+        pairs.push(wait_for_map(&mut h, t0));
+    }
+    let (p2, m2): (Vec<f64>, Vec<f64>) = pairs.into_iter().unzip();
+    println!(
+        "two strokes a frame apart, median of {}: the second's preview shown {:.3} s, map shown {:.3} s",
+        p2.len(),
+        median(p2),
+        median(m2)
     );
     // The last map's classifier again, here: its prediction alone.
     let img = h.state().doc.image.clone().expect("image");

@@ -7,7 +7,11 @@
 //! save them), the map is not: it is derived, on a background thread ([`Trainer`]) so
 //! the window stays responsive. Requests carry the strokes' revision; the thread takes
 //! only the newest request waiting (latest wins) and the window drops an answer whose
-//! revision is no longer the document's (stale). The thread keeps the features of the
+//! revision is no longer the document's (stale); a newer request also stops the one in
+//! flight between rows of its prediction, so two quick strokes wait for one map. The
+//! map comes in two parts: a half-resolution preview (the forest's own prediction at
+//! every other pixel, a quarter of the work, shown and labelled as such) then the full
+//! map, which alone the contours read. The thread keeps the features of the
 //! image it saw last, so a stroke costs a training and a prediction, not the filters;
 //! and it computes them as soon as the Train tool is on an image ([`Trainer::warm`]),
 //! while the user paints the first strokes (on the 908×783 phase-contrast colony the
@@ -16,6 +20,7 @@
 //! app and its session's replay read the same probabilities.
 
 use crate::evolution::Field;
+use crate::learn::Probabilities;
 use crate::learn::{Classifier, FeatureSet, Features, ForestParams, Strokes, Taught};
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::mpsc::{channel, Receiver, Sender};
@@ -176,6 +181,8 @@ pub struct Map {
 /// What the window asks the thread.
 struct Request {
     key: Key,
+    /// The request's number: the thread stops it once a newer one is asked.
+    seq: u64,
     image: Arc<Field>,
     name: String,
     source: Source,
@@ -197,8 +204,15 @@ pub struct Trainer {
     pub requested: Option<(Key, Instant)>,
     /// The newest map accepted.
     pub map: Option<Arc<Map>>,
+    /// The newest preview accepted: the map of its key at half resolution, until the
+    /// full map comes.
+    pub preview: Option<(Key, Arc<Probabilities>)>,
     /// Stroke to map shown, the last time, ms.
     pub latency_ms: Option<f64>,
+    /// Stroke to preview shown, the last time, ms.
+    pub preview_ms: Option<f64>,
+    /// The newest request's number (the thread drops the others).
+    newest: Arc<AtomicU64>,
     /// The image (by address) whose features were asked for ahead of the strokes.
     warmed: Option<usize>,
     /// The image (by address, 0: none) whose features the thread holds now.
@@ -220,8 +234,10 @@ impl Trainer {
         source: Source,
         wake: Option<egui::Context>,
     ) {
+        let seq = self.newest.fetch_add(1, Ordering::AcqRel) + 1;
         let req = Request {
             key,
+            seq,
             image,
             name,
             source,
@@ -248,7 +264,7 @@ impl Trainer {
     /// Sends `m` to the thread (started on first use); whether it went.
     fn send(&mut self, m: Message, wake: Option<egui::Context>) -> bool {
         if self.tx.is_none() {
-            let (tx, rx) = spawn(wake, self.ready.clone());
+            let (tx, rx) = spawn(wake, self.ready.clone(), self.newest.clone());
             (self.tx, self.rx) = (Some(tx), Some(rx));
         }
         self.tx.as_ref().is_some_and(|tx| tx.send(m).is_ok())
@@ -256,6 +272,8 @@ impl Trainer {
 
     /// Takes a map computed in the window's thread.
     pub fn accept(&mut self, key: Key, taught: Taught) {
+        // The thread's request in flight is this one: it stops.
+        self.newest.fetch_add(1, Ordering::AcqRel);
         self.map = Some(Arc::new(Map { key, taught }));
         self.requested = Some((key, Instant::now()));
     }
@@ -267,7 +285,19 @@ impl Trainer {
             return (false, None);
         };
         let (mut came, mut error) = (false, None);
-        while let Ok((k, result)) = rx.try_recv() {
+        while let Ok(answer) = rx.try_recv() {
+            let (k, result) = match answer {
+                Answer::Preview(k, p) => {
+                    if Some(k) == key {
+                        self.preview = Some((k, Arc::new(p)));
+                        if let Some((_, at)) = self.requested.filter(|(q, _)| *q == k) {
+                            self.preview_ms = Some(at.elapsed().as_secs_f64() * 1e3);
+                        }
+                    }
+                    continue;
+                }
+                Answer::Map(k, result) => (k, result),
+            };
             if Some(k) != key {
                 continue;
             }
@@ -295,16 +325,33 @@ impl Trainer {
     pub fn map_of(&self, key: Key) -> Option<&Map> {
         self.map.as_deref().filter(|m| m.key == key)
     }
+
+    /// The preview of `key` while its full map has not come.
+    pub fn preview_of(&self, key: Key) -> Option<&Arc<Probabilities>> {
+        if self.map_of(key).is_some() {
+            return None;
+        }
+        self.preview
+            .as_ref()
+            .filter(|(k, _)| *k == key)
+            .map(|(_, p)| p)
+    }
 }
 
-/// What the thread answers: the map's key and the map (or why teaching failed).
-type Answer = (Key, Result<Taught, String>);
+/// What the thread answers, with the key of the map it is of.
+enum Answer {
+    /// The map at half resolution (the pixels of even x and y).
+    Preview(Key, Probabilities),
+    /// The map (or why teaching failed).
+    Map(Key, Result<Taught, String>),
+}
 
 /// The thread: waits for a request, skips to the newest waiting, answers it; an image
 /// to warm is taken only when no map is asked for.
 fn spawn(
     wake: Option<egui::Context>,
     ready: Arc<AtomicUsize>,
+    newest: Arc<AtomicU64>,
 ) -> (Sender<Message>, Receiver<Answer>) {
     let (tx, requests) = channel::<Message>();
     let (answers, rx) = channel();
@@ -325,15 +372,21 @@ fn spawn(
                 }
                 continue;
             };
-            let result = teach(&req, &mut cache);
+            // Numbers only grow, so once stopped a request stays stopped.
+            let stop = || newest.load(Ordering::Acquire) != req.seq;
+            let mut gone = false;
+            let send = |a: Answer| {
+                gone |= answers.send(a).is_err();
+                if let Some(c) = &wake {
+                    c.request_repaint();
+                }
+            };
+            answer(&req, &mut cache, &stop, send);
             if let Some((image, _, _)) = &cache {
                 ready.store(Arc::as_ptr(image) as usize, Ordering::Release);
             }
-            if answers.send((req.key, result)).is_err() {
+            if gone {
                 break;
-            }
-            if let Some(c) = &wake {
-                c.request_repaint();
             }
         }
     });
@@ -356,11 +409,50 @@ fn features_of<'a>(
     &cache.as_ref().expect("just filled").2
 }
 
+/// Answers `req` through `send`: its preview, then its map (or why it cannot be
+/// taught); nothing more once `stop` says a newer request waits.
+fn answer(
+    req: &Request,
+    cache: &mut Option<(Arc<Field>, FeatureSet, Features)>,
+    stop: &(dyn Fn() -> bool + Sync),
+    mut send: impl FnMut(Answer),
+) {
+    let (classifier, features) = match classifier_of(req, cache) {
+        Ok(c) => c,
+        Err(e) => return send(Answer::Map(req.key, Err(e))),
+    };
+    let Some(preview) = classifier.predict_preview(features, stop) else {
+        return;
+    };
+    send(Answer::Preview(req.key, preview.clone()));
+    let Some(probabilities) = classifier.predict_rest(features, &preview, stop) else {
+        return;
+    };
+    let taught = Taught {
+        classifier,
+        probabilities,
+    };
+    send(Answer::Map(req.key, Ok(taught)));
+}
+
 /// [`crate::learn::Teach::apply`] with the image's features kept between requests.
 fn teach(
     req: &Request,
     cache: &mut Option<(Arc<Field>, FeatureSet, Features)>,
 ) -> Result<Taught, String> {
+    let (classifier, features) = classifier_of(req, cache)?;
+    let probabilities = classifier.predict(features);
+    Ok(Taught {
+        classifier,
+        probabilities,
+    })
+}
+
+/// The classifier of `req` (trained, or the one loaded) and the image's features.
+fn classifier_of<'a>(
+    req: &Request,
+    cache: &'a mut Option<(Arc<Field>, FeatureSet, Features)>,
+) -> Result<(Arc<Classifier>, &'a Features), String> {
     let set = match &req.source {
         Source::Strokes(_) => FeatureSet::default(),
         Source::Loaded(c) => {
@@ -379,11 +471,7 @@ fn teach(
         }
         Source::Loaded(c) => c.clone(),
     };
-    let probabilities = classifier.predict(features);
-    Ok(Taught {
-        classifier,
-        probabilities,
-    })
+    Ok((classifier, features))
 }
 
 /// The map computed here and now (the window waits): for a run asked for before the
@@ -391,9 +479,119 @@ fn teach(
 pub fn teach_now(image: &Arc<Field>, name: &str, source: Source) -> Result<Taught, String> {
     let req = Request {
         key: (0, 0),
+        seq: 0,
         image: image.clone(),
         name: name.to_string(),
         source,
     };
     teach(&req, &mut None)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 24×20 image with a bright square, and strokes of object and background.
+    fn request(key: Key) -> Request {
+        let (w, h) = (24, 20);
+        let inside = |i: usize| (6..14).contains(&(i % w)) && (5..13).contains(&(i / w));
+        let data = (0..w * h)
+            .map(|i| if inside(i) { 0.8 } else { 0.2 } + 0.01 * (i % 7) as f32)
+            .collect();
+        let labels = (0..w * h)
+            .map(|i| match (i % w, i / w) {
+                (9..=11, 9) => 2,
+                (_, 17) => 1,
+                _ => 0,
+            })
+            .collect();
+        Request {
+            key,
+            seq: 1,
+            image: Arc::new(Field::new(w, h, data)),
+            name: "square".into(),
+            source: Source::Strokes(Arc::new(Strokes::new(w, h, labels).unwrap())),
+        }
+    }
+
+    /// A trainer whose answers come from the test, not from a thread.
+    fn fake() -> (Trainer, Sender<Answer>) {
+        let (tx, rx) = channel();
+        let t = Trainer {
+            rx: Some(rx),
+            ..Trainer::default()
+        };
+        (t, tx)
+    }
+
+    fn taught() -> Taught {
+        teach(&request((0, 0)), &mut None).unwrap()
+    }
+
+    #[test]
+    fn an_old_map_arriving_late_is_dropped() {
+        let (old, new) = ((1, 7), (2, 7));
+        let (mut t, tx) = fake();
+        let p = taught().probabilities;
+        // The newer stroke's preview and map come; the older's come after them.
+        tx.send(Answer::Preview(new, p.clone())).unwrap();
+        assert_eq!(t.poll(Some(new)), (false, None), "a preview is not the map");
+        assert!(t.preview_of(new).is_some() && t.map_of(new).is_none());
+        tx.send(Answer::Map(new, Ok(taught()))).unwrap();
+        assert_eq!(t.poll(Some(new)), (true, None));
+        assert!(
+            t.preview_of(new).is_none(),
+            "the full map replaces the preview"
+        );
+        tx.send(Answer::Preview(old, p)).unwrap();
+        tx.send(Answer::Map(old, Ok(taught()))).unwrap();
+        assert_eq!(t.poll(Some(new)), (false, None));
+        assert_eq!(t.map.as_ref().unwrap().key, new, "the newer map stays");
+        assert_eq!(t.preview.as_ref().unwrap().0, new);
+    }
+
+    #[test]
+    fn a_stopped_request_answers_nothing_and_a_running_one_its_preview_then_its_map() {
+        let mut cache = None;
+        let mut sent = Vec::new();
+        answer(&request((3, 1)), &mut cache, &|| true, |a| sent.push(a));
+        assert!(sent.is_empty(), "a newer request waits: nothing is sent");
+        answer(&request((4, 1)), &mut cache, &|| false, |a| sent.push(a));
+        let want = taught().probabilities;
+        match sent.as_slice() {
+            [Answer::Preview(k, p), Answer::Map(k2, Ok(m))] => {
+                assert_eq!((*k, *k2), ((4, 1), (4, 1)));
+                assert_eq!((p.width, p.height), (12, 10));
+                assert_eq!(m.probabilities, want, "the full map is predict's");
+            }
+            _ => panic!("preview then map expected"),
+        }
+    }
+
+    /// Through the real thread: a request that a newer one followed gives no map and
+    /// no preview, whether the thread finds it in the queue or already working on it.
+    #[test]
+    fn of_two_quick_requests_only_the_newer_is_answered() {
+        let newest = Arc::new(AtomicU64::new(0));
+        let (tx, rx) = spawn(None, Arc::default(), newest.clone());
+        let (mut a, mut b) = (request((5, 1)), request((6, 1)));
+        (a.seq, b.seq) = (1, 2);
+        // The newer is asked before the thread can have finished the older.
+        newest.store(2, Ordering::Release);
+        tx.send(Message::Teach(a)).unwrap();
+        tx.send(Message::Teach(b)).unwrap();
+        let mut keys = Vec::new();
+        loop {
+            match rx.recv_timeout(std::time::Duration::from_secs(60)) {
+                Ok(Answer::Map(k, m)) => {
+                    assert!(m.is_ok());
+                    keys.push(k);
+                    break;
+                }
+                Ok(Answer::Preview(k, _)) => keys.push(k),
+                Err(e) => panic!("no map came: {e}"),
+            }
+        }
+        assert_eq!(keys, [(6, 1), (6, 1)], "the newer's preview and map only");
+    }
 }

@@ -191,3 +191,100 @@ impl Classifier {
         }
     }
 }
+
+/// The map in two parts, for a front end that shows a map while it is made (ilastik
+/// predicts the visible tiles first): a half-resolution preview — the pixels at even x
+/// and y, a quarter of the work — then the rest. Each part is the forest's own
+/// prediction (the same values [`Classifier::predict`] gives those pixels; no pixel is
+/// predicted twice), and each stops between rows once `stop` says so, so a newer
+/// request need not wait for an older one.
+impl Classifier {
+    /// The probabilities at the pixels of even x and y, as a ⌈w/2⌉×⌈h/2⌉ map; `None`
+    /// when `stop` returned true before the last row.
+    pub fn predict_preview(
+        &self,
+        features: &Features,
+        stop: &(dyn Fn() -> bool + Sync),
+    ) -> Option<Probabilities> {
+        let (w, h) = (features.width, features.height);
+        let (hw, hh) = (w.div_ceil(2), h.div_ceil(2));
+        let c = self.labels.len();
+        let forest = self.forest.predictor();
+        let mut data = filters::written_zeros(hw * hh * c);
+        filters::for_rows(&mut data, hw * c, |y, row| {
+            if stop() {
+                return;
+            }
+            let cols = gather(features, 2 * y, 0);
+            let refs: Vec<&[f32]> = cols.iter().map(|p| p.as_slice()).collect();
+            forest.predict_block(&refs, 0, row);
+        });
+        (!stop()).then(|| Probabilities {
+            width: hw,
+            height: hh,
+            labels: self.labels.clone(),
+            data,
+        })
+    }
+
+    /// The full map, `preview` ([`Classifier::predict_preview`] of these features)
+    /// giving its pixels: only the others are predicted. `None` when stopped.
+    ///
+    /// # Panics
+    /// If `preview` is not of this size and these classes.
+    pub fn predict_rest(
+        &self,
+        features: &Features,
+        preview: &Probabilities,
+        stop: &(dyn Fn() -> bool + Sync),
+    ) -> Option<Probabilities> {
+        let (w, h) = (features.width, features.height);
+        let (hw, c) = (w.div_ceil(2), self.labels.len());
+        assert!(
+            (preview.width, preview.height) == (hw, h.div_ceil(2)) && preview.labels == self.labels,
+            "preview of another map"
+        );
+        let planes: Vec<&[f32]> = features.planes.iter().map(|p| p.as_slice()).collect();
+        let forest = self.forest.predictor();
+        let mut data = filters::written_zeros(w * h * c);
+        filters::for_rows(&mut data, w * c, |y, row| {
+            if stop() {
+                return;
+            }
+            if y % 2 == 1 {
+                forest.predict_block(&planes, y * w, row);
+                return;
+            }
+            let known = &preview.data[(y / 2) * hw * c..(y / 2 + 1) * hw * c];
+            let cols = gather(features, y, 1);
+            let refs: Vec<&[f32]> = cols.iter().map(|p| p.as_slice()).collect();
+            let mut odd = vec![0.0f32; (w / 2) * c];
+            forest.predict_block(&refs, 0, &mut odd);
+            for x in 0..w {
+                let from = if x % 2 == 0 {
+                    &known[(x / 2) * c..(x / 2 + 1) * c]
+                } else {
+                    &odd[(x / 2) * c..(x / 2 + 1) * c]
+                };
+                row[x * c..(x + 1) * c].copy_from_slice(from);
+            }
+        });
+        (!stop()).then(|| Probabilities {
+            width: w,
+            height: h,
+            labels: self.labels.clone(),
+            data,
+        })
+    }
+}
+
+/// Row `y` of every feature plane at the columns `first`, `first + 2`, …
+fn gather(features: &Features, y: usize, first: usize) -> Vec<Vec<f32>> {
+    let w = features.width;
+    let row = y * w;
+    features
+        .planes
+        .iter()
+        .map(|p| p[row + first..row + w].iter().step_by(2).copied().collect())
+        .collect()
+}

@@ -21,7 +21,8 @@ pub(in crate::app) fn label_color(l: u8) -> Color32 {
 /// The textures of the map and the strokes, with what they were made from.
 #[derive(Default)]
 pub struct TrainTextures {
-    map: Option<((u64, usize), egui::TextureHandle)>,
+    /// The map's key, whether it is the preview, and its texture.
+    map: Option<((crate::app::train::Key, bool), egui::TextureHandle)>,
     strokes: Option<(u64, egui::TextureHandle)>,
 }
 
@@ -42,17 +43,24 @@ pub(super) fn train_layer(
     );
     let uv = Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0));
     let here = std::sync::Arc::as_ptr(image) as usize;
-    // The newest map of this image, while a newer one is trained.
+    // The preview of the strokes now painted until their map comes; else the newest
+    // map of this image (while a newer one is trained).
+    let key = cx.doc.train.key(image);
+    let preview = key.and_then(|k| cx.jobs.trainer.preview_of(k).map(|p| (k, p)));
     let map = cx
         .jobs
         .trainer
         .map
         .as_ref()
-        .filter(|m| m.key.1 == here && cx.doc.train.key(image).is_some());
+        .filter(|m| m.key.1 == here && key.is_some());
+    let shown = match (preview, map) {
+        (Some((k, p)), _) => Some(((k, true), &**p)),
+        (None, Some(m)) => Some(((m.key, false), &m.taught.probabilities)),
+        (None, None) => None,
+    };
     let tex = &mut cx.view.canvas.train_textures;
-    if let Some(m) = map.filter(|_| cx.view.prefs.show_probabilities) {
-        if tex.map.as_ref().is_none_or(|(k, _)| *k != m.key) {
-            let p = &m.taught.probabilities;
+    if let Some((what, p)) = shown.filter(|_| cx.view.prefs.show_probabilities) {
+        if tex.map.as_ref().is_none_or(|(k, _)| *k != what) {
             let (o, d, b) = (p.of(OBJECT), p.of(BOUNDARY), p.of(BACKGROUND));
             let px = |k: usize| {
                 let c = |v: f32| (v.clamp(0.0, 1.0) * 255.0) as u8;
@@ -63,10 +71,21 @@ pub(super) fn train_layer(
             let h = ui
                 .ctx()
                 .load_texture("probabilities", img, egui::TextureOptions::NEAREST);
-            tex.map = Some((m.key, h));
+            tex.map = Some((what, h));
         }
-        if let Some((_, h)) = &tex.map {
-            painter.image(h.id(), rect, uv, Color32::WHITE);
+        if let Some(((_, half), h)) = &tex.map {
+            // A preview's pixel (x, y) is the image's (2x, 2y): its texels are 2×2
+            // pixels, and its last ones overhang an odd side by half a texel.
+            let r = if *half {
+                let (pw, ph) = (
+                    image.width.div_ceil(2) as f32 * 2.0 / image.width as f32,
+                    image.height.div_ceil(2) as f32 * 2.0 / image.height as f32,
+                );
+                Rect::from_min_size(rect.min, egui::vec2(rect.width() * pw, rect.height() * ph))
+            } else {
+                rect
+            };
+            painter.image(h.id(), r, uv, Color32::WHITE);
         }
     }
     let train = &cx.doc.train;

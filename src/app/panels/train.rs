@@ -72,9 +72,24 @@ fn state_ui(cx: &Ctx, ui: &mut egui::Ui) {
         ui.label("paint object (2) and background (1) or boundary (3) to train");
     } else if trainer.busy() {
         ui.spinner();
-        ui.label("training…");
+        let preview = cx
+            .doc
+            .image
+            .as_ref()
+            .and_then(|i| train.key(i))
+            .is_some_and(|k| trainer.preview_of(k).is_some());
+        if preview {
+            ui.label("preview (½ resolution), full map…")
+                .on_hover_text("the new classifier's probabilities at every other pixel; the full map replaces it, and the contours read only that");
+        } else {
+            ui.label("training…");
+        }
     } else if let Some(ms) = trainer.latency_ms {
-        ui.label(format!("map updated in {ms:.0} ms"))
+        let preview = trainer
+            .preview_ms
+            .map(|p| format!("preview in {p:.0} ms, "))
+            .unwrap_or_default();
+        ui.label(format!("{preview}map updated in {ms:.0} ms"))
             .on_hover_text(
             "from the stroke to the map on screen (features of the image, training, prediction)",
         );
