@@ -300,6 +300,23 @@ pub fn signed_area(pts: &[Point]) -> f64 {
     0.5 * signed_area2(pts)
 }
 
+/// Twice the signed area of a closed polygon and its area centroid (the origin when the
+/// area is nil).
+pub fn area2_centroid(pts: &[Point]) -> (f64, Point) {
+    let n = pts.len();
+    let (mut a2, mut c) = (0.0, Point::default());
+    for i in 0..n {
+        let (u, v) = (pts[i], pts[(i + 1) % n]);
+        let k = u.cross(v);
+        a2 += k;
+        c = c + (u + v) * k;
+    }
+    if a2.abs() < 1e-9 {
+        return (a2, Point::default());
+    }
+    (a2, c * (1.0 / (3.0 * a2)))
+}
+
 /// Winding number of the closed polygon `loop_pts` around `p`, exact as long as `p` is
 /// not on the polygon (Sunday's crossing rule with exact orientation tests).
 pub fn winding_number(loop_pts: &[Point], p: Point) -> i32 {

@@ -13,17 +13,10 @@ use crate::track::{TrackedObject, MIN_CLAIMED_SHARE, MIN_DAUGHTER_SHARE};
 /// the next frame. A similarity keeps the ring simple, and a cell that moved less than
 /// `by` is still under it.
 pub fn shrunk(pts: &[Point], by: f64) -> Shape {
-    let (mut a2, mut c) = (0.0, Point::default());
-    for i in 0..pts.len() {
-        let (p, q) = (pts[i], pts[(i + 1) % pts.len()]);
-        let k = p.cross(q);
-        a2 += k;
-        c = c + (p + q) * k;
-    }
-    if a2 <= 0.0 {
+    let (a2, c) = crate::geometry::area2_centroid(pts);
+    if a2 < 1e-9 {
         return Shape::Polygon(pts.to_vec());
     }
-    let c = c * (1.0 / (3.0 * a2));
     let radius = (0.5 * a2 / std::f64::consts::PI).sqrt();
     let f = (1.0 - by / radius).max(0.5);
     Shape::Polygon(pts.iter().map(|&p| c + (p - c) * f).collect())

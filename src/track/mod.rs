@@ -425,17 +425,11 @@ impl Tracker {
 
 /// A cell of outline `ring` (region on the left), not yet given its track.
 fn object(ring: Vec<Point>) -> TrackedObject {
-    let (mut a2, mut c) = (0.0, Point::default());
-    for i in 0..ring.len() {
-        let (p, q) = (ring[i], ring[(i + 1) % ring.len()]);
-        let k = p.cross(q);
-        a2 += k;
-        c = c + (p + q) * k;
-    }
+    let (a2, centroid) = crate::geometry::area2_centroid(&ring);
     TrackedObject {
         track: 0,
         area: 0.5 * a2,
-        centroid: c * (1.0 / (3.0 * a2)),
+        centroid,
         ring,
     }
 }

@@ -20,7 +20,7 @@
 //! division like a split of the topology core.
 
 use crate::geometry::{
-    segment_intersection, signed_area, winding_number, Point, SegmentIntersection,
+    area2_centroid, segment_intersection, signed_area, winding_number, Point, SegmentIntersection,
 };
 use crate::image::Field;
 use crate::track::MIN_DAUGHTER_SHARE;
@@ -137,7 +137,7 @@ fn septum(ring: &[Point], a: &[Point], b: &[Point], p: Point, q: Point, image: &
         s / n.max(1) as f64
     };
     let core = |l: &[Point]| {
-        let c = centroid(l);
+        let c = area2_centroid(l).1;
         let axis = elongation(l).2;
         mean(&mut (-2..=2).map(move |k| c + axis * (k as f64)))
     };
@@ -161,33 +161,14 @@ fn septum(ring: &[Point], a: &[Point], b: &[Point], p: Point, q: Point, image: &
     (chord - inside) / span
 }
 
-fn centroid(p: &[Point]) -> Point {
-    let n = p.len();
-    let (mut a2, mut c) = (0.0, Point::default());
-    for i in 0..n {
-        let (u, v) = (p[i], p[(i + 1) % n]);
-        let k = u.cross(v);
-        a2 += k;
-        c = c + (u + v) * k;
-    }
-    c * (1.0 / (3.0 * a2))
-}
-
 /// The aspect (major over minor axis) of polygon `p`'s second moments, its width across
 /// the major axis (a band's, √(12 × minor moment / area)) and that axis (unit).
 fn elongation(p: &[Point]) -> (f64, f64, Point) {
     let n = p.len();
-    let (mut a2, mut c) = (0.0, Point::default());
-    for i in 0..n {
-        let (u, v) = (p[i], p[(i + 1) % n]);
-        let k = u.cross(v);
-        a2 += k;
-        c = c + (u + v) * k;
-    }
+    let (a2, c) = area2_centroid(p);
     if a2.abs() < 1e-9 {
         return (1.0, 0.0, Point::new(1.0, 0.0));
     }
-    let c = c * (1.0 / (3.0 * a2));
     let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
     for i in 0..n {
         let (u, v) = (p[i] - c, p[(i + 1) % n] - c);
