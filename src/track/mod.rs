@@ -226,16 +226,13 @@ impl Tracker {
             // Sisters touching end to end never pinch apart in the image: cut at necks.
             let mut cut: Vec<TrackedObject> = Vec::with_capacity(group.len());
             for o in group {
-                let rings = neck::cut_at_necks(o.ring.clone(), image);
-                if rings.len() == 1 {
-                    cut.push(o);
-                } else {
-                    cut.extend(rings.into_iter().map(object));
+                match neck::cut_at_necks(&o.ring, image) {
+                    Some(rings) => cut.extend(rings.into_iter().map(object)),
+                    None => cut.push(o),
                 }
             }
             cut.sort_by(|x, y| y.area.total_cmp(&x.area));
-            let group = cut;
-            self.settle(owner, group, &mut frame);
+            self.settle(owner, cut, &mut frame);
         }
         frame.objects.sort_by_key(|o| o.track);
         self.live = frame
@@ -356,9 +353,6 @@ impl Tracker {
         Ok((pieces, ev.frames(), Some(ev.image().clone())))
     }
 
-    /// Gives the pieces of one shape their tracks: the same track for one piece of a
-    /// tracked cell, two children for two or more (the two largest; any further piece
-    /// starts a track of its own), new tracks for the pieces of a new seed.
     /// `groups` without the new cells that do not stand out from their surroundings
     /// ([`contrast`]).
     fn without_faint(
@@ -393,6 +387,9 @@ impl Tracker {
             .collect()
     }
 
+    /// Gives the pieces of one shape their tracks: the same track for one piece of a
+    /// tracked cell, two children for two or more (the two largest; any further piece
+    /// starts a track of its own), new tracks for the pieces of a new seed.
     fn settle(&mut self, owner: Option<u32>, group: Vec<TrackedObject>, frame: &mut TrackedFrame) {
         let t = frame.frame;
         let mut labels: Vec<u32> = Vec::with_capacity(group.len());

@@ -42,9 +42,10 @@ pub const EDGE_MARGIN: f64 = 3.0;
 pub const MAX_PIECES: usize = 16;
 
 /// `ring` cut at its necks until none is left (a chain of touching rods is cut at each
-/// contact), at most [`MAX_PIECES`] pieces, largest first.
-pub fn cut_at_necks(ring: Vec<Point>, image: &Field) -> Vec<Vec<Point>> {
-    let (mut done, mut todo) = (Vec::new(), vec![ring]);
+/// contact), at most [`MAX_PIECES`] pieces, largest first; `None` when it has no neck.
+pub fn cut_at_necks(ring: &[Point], image: &Field) -> Option<Vec<Vec<Point>>> {
+    let (a, b) = neck_cut(ring, image)?;
+    let (mut done, mut todo) = (Vec::new(), vec![a, b]);
     while let Some(r) = todo.pop() {
         match (done.len() + todo.len() + 1 < MAX_PIECES)
             .then(|| neck_cut(&r, image))
@@ -55,7 +56,7 @@ pub fn cut_at_necks(ring: Vec<Point>, image: &Field) -> Vec<Vec<Point>> {
         }
     }
     done.sort_by(|a, b| signed_area(b).total_cmp(&signed_area(a)));
-    done
+    Some(done)
 }
 
 /// The two lobes of `ring` (region on the left) cut at its neck, each a ring with the
