@@ -289,7 +289,7 @@ impl Trainer {
             let (k, result) = match answer {
                 Answer::Preview(k, p) => {
                     if Some(k) == key {
-                        self.preview = Some((k, Arc::new(p)));
+                        self.preview = Some((k, p));
                         if let Some((_, at)) = self.requested.filter(|(q, _)| *q == k) {
                             self.preview_ms = Some(at.elapsed().as_secs_f64() * 1e3);
                         }
@@ -341,7 +341,7 @@ impl Trainer {
 /// What the thread answers, with the key of the map it is of.
 enum Answer {
     /// The map at half resolution (the pixels of even x and y).
-    Preview(Key, Probabilities),
+    Preview(Key, Arc<Probabilities>),
     /// The map (or why teaching failed).
     Map(Key, Result<Taught, String>),
 }
@@ -424,6 +424,7 @@ fn answer(
     let Some(preview) = classifier.predict_preview(features, stop) else {
         return;
     };
+    let preview = Arc::new(preview);
     send(Answer::Preview(req.key, preview.clone()));
     let Some(probabilities) = classifier.predict_rest(features, &preview, stop) else {
         return;
@@ -534,7 +535,7 @@ mod tests {
         let (mut t, tx) = fake();
         let p = taught().probabilities;
         // The newer stroke's preview and map come; the older's come after them.
-        tx.send(Answer::Preview(new, p.clone())).unwrap();
+        tx.send(Answer::Preview(new, Arc::new(p.clone()))).unwrap();
         assert_eq!(t.poll(Some(new)), (false, None), "a preview is not the map");
         assert!(t.preview_of(new).is_some() && t.map_of(new).is_none());
         tx.send(Answer::Map(new, Ok(taught()))).unwrap();
@@ -543,7 +544,7 @@ mod tests {
             t.preview_of(new).is_none(),
             "the full map replaces the preview"
         );
-        tx.send(Answer::Preview(old, p)).unwrap();
+        tx.send(Answer::Preview(old, Arc::new(p))).unwrap();
         tx.send(Answer::Map(old, Ok(taught()))).unwrap();
         assert_eq!(t.poll(Some(new)), (false, None));
         assert_eq!(t.map.as_ref().unwrap().key, new, "the newer map stays");
