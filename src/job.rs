@@ -19,7 +19,7 @@ use crate::evolution::{find_seeds, Edit, EvolveError, Evolver, Field, Params, Po
 use crate::image::Stored;
 use crate::io::{load_image_page, ImageInfo, LoadError, PixelSize};
 use crate::learn::guide::{self, Guide};
-use crate::learn::{Taught, Teach, TeachError};
+use crate::learn::{Taught, Teach, TeachError, BOUNDARY};
 use std::borrow::Cow;
 use std::path::PathBuf;
 
@@ -276,6 +276,11 @@ impl Job {
         let image = image.expect("an owned image is kept");
         ev.free_coarse_levels();
         self.drive(&mut ev)?;
+        if let Some(t) = &taught {
+            // Rods merged end to end: cut where the boundary class crosses them.
+            let p = &t.probabilities;
+            ev.cut_at_necks(&Field::new(p.width, p.height, p.of(BOUNDARY)));
+        }
         ev.filter_clutter();
         Ok(JobRun {
             ev,

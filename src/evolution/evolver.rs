@@ -438,6 +438,16 @@ impl Evolver {
         crate::contours::measure::drop_small(self.engine.contours_mut(), self.params.min_area);
     }
 
+    /// Cuts each outer region with no hole where `line` (a taught run's P(boundary))
+    /// shows a septum across it ([`crate::track::neck::cut_set_at_necks`]); an implicit
+    /// run is left as it is (its contours are its level set's). Returns the cuts made.
+    pub fn cut_at_necks(&mut self, line: &Field) -> usize {
+        if self.implicit().is_some() {
+            return 0;
+        }
+        crate::track::neck::cut_set_at_necks(self.engine.contours_mut(), line)
+    }
+
     /// The contours with regions and holes smaller than `min_area` dropped, the run
     /// untouched (the app exports a frame and plays on).
     pub fn filtered_contours(&self, min_area: f64) -> ContourSet {

@@ -226,7 +226,7 @@ impl Tracker {
             // Sisters touching end to end never pinch apart in the image: cut at necks.
             let mut cut: Vec<TrackedObject> = Vec::with_capacity(group.len());
             for o in group {
-                match neck::cut_at_necks(&o.ring, image) {
+                match neck::cut_at_necks(&o.ring, image, None) {
                     Some(rings) => cut.extend(rings.into_iter().map(object)),
                     None => cut.push(o),
                 }

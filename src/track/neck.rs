@@ -21,15 +21,26 @@
 //! splits by itself only a frame or two after the division; a condensing mother has no
 //! neck, and an unequal hourglass is left to pinch by itself.
 //!
+//! A taught run (issue 25) cuts its final objects the same way, but reads the septum
+//! from the classifier's P(boundary) and lets it choose the chord
+//! ([`neck_cut_along`], [`cut_set_at_necks`]): in a dense colony rods merged end to end
+//! touch over their full width, so the outline has no neck and the shortest chord is
+//! any cross-section of a rod, while the boundary class marks the contact. Measured on
+//! two simulated stroke sets, docs/decisions.md (2026-12-02): the tracker's own rule on
+//! the final objects lowered mean SEG with every septum image tried (raw intensity,
+//! P(object), P(background), P(boundary)); the chord chosen by P(boundary) raised it.
+//!
 //! The cut is Icy's "opposite points come close" heuristic (de Chaumont et al. 2012,
 //! Active Contours plugin) made selective by the image; the pieces are reported as a
 //! division like a split of the topology core.
 
+use crate::contours::{ContourId, ContourSet};
 use crate::geometry::{
     area2_centroid, segment_intersection, signed_area, winding_number, Point, SegmentIntersection,
 };
 use crate::image::Field;
 use crate::track::MIN_DAUGHTER_SHARE;
+use std::collections::{HashMap, HashSet};
 
 /// The widest neck cut with no line along it, as a share of the thinner rod's width
 /// (the mother's waist before division is wider; two caps just meeting are narrower).
@@ -64,12 +75,17 @@ pub const MAX_PIECES: usize = 16;
 
 /// `ring` cut at its necks until none is left (a chain of touching rods is cut at each
 /// contact), at most [`MAX_PIECES`] pieces, largest first; `None` when it has no neck.
-pub fn cut_at_necks(ring: &[Point], image: &Field) -> Option<Vec<Vec<Point>>> {
-    let (a, b) = neck_cut(ring, image)?;
+/// With `line`, each cut is [`neck_cut_along`] it.
+pub fn cut_at_necks(
+    ring: &[Point],
+    image: &Field,
+    line: Option<&Field>,
+) -> Option<Vec<Vec<Point>>> {
+    let (a, b) = neck_cut_along(ring, image, line)?;
     let (mut done, mut todo) = (Vec::new(), vec![a, b]);
     while let Some(r) = todo.pop() {
         match (done.len() + todo.len() + 1 < MAX_PIECES)
-            .then(|| neck_cut(&r, image))
+            .then(|| neck_cut_along(&r, image, line))
             .flatten()
         {
             Some((a, b)) => todo.extend([a, b]),
@@ -80,9 +96,117 @@ pub fn cut_at_necks(ring: &[Point], image: &Field) -> Option<Vec<Vec<Point>>> {
     Some(done)
 }
 
+/// How far apart (pixels) the pieces [`cut_set_at_necks`] puts back are held: rings of
+/// one set must not touch, and the pieces of a cut share their chord.
+pub const PIECE_GAP: f64 = 0.5;
+
+/// Every outer ring of `set` with no hole cut at the septa `line` shows (a taught run's
+/// P(boundary): [`cut_at_necks`] with the chord chosen and judged by it), the pieces put
+/// back [`PIECE_GAP`] apart along each chord (the chord split into edges no longer than
+/// the set's bound). A ring whose pieces the set refuses (they would touch another
+/// ring) stays whole. Returns the number of cuts made.
+pub fn cut_set_at_necks(set: &mut ContourSet, line: &Field) -> usize {
+    let parents = set.parents();
+    let holed: HashSet<ContourId> = parents.iter().filter_map(|&(_, p)| p).collect();
+    let outers: Vec<ContourId> = parents
+        .iter()
+        .filter(|&&(id, p)| p.is_none() && !holed.contains(&id) && !set.is_hole(id))
+        .map(|&(id, _)| id)
+        .collect();
+    let bound = set.max_edge();
+    let mut cuts = 0;
+    for id in outers {
+        let ring = set.ring_points(id);
+        let n = ring.len();
+        // Only a ring the set would take again: it is put back if a piece is refused.
+        if (0..n).any(|k| ring[k].dist(ring[(k + 1) % n]) > bound) {
+            continue;
+        }
+        let Some(pieces) = cut_at_necks(&ring, line, Some(line)) else {
+            continue;
+        };
+        let pieces: Vec<Vec<Point>> = pieces.iter().map(|p| parted(p, &ring, bound)).collect();
+        set.remove_ring(id);
+        let mut added = Vec::new();
+        for p in &pieces {
+            match set.add_ring(p) {
+                Ok(k) => added.push(k),
+                Err(_) => break,
+            }
+        }
+        if added.len() == pieces.len() {
+            cuts += pieces.len() - 1;
+        } else {
+            for k in added {
+                set.remove_ring(k);
+            }
+            // It was in the set, its edges within the bound: the set takes it again.
+            let _ = set.add_ring(&ring);
+        }
+    }
+    cuts
+}
+
+/// `piece` (a lobe of `ring`, made of `ring`'s points) with each chord's ends (a chord:
+/// an edge that is not one of `ring`'s) slid half of [`PIECE_GAP`] back along the
+/// piece's outline, and the chord split into edges of at most `bound`.
+fn parted(piece: &[Point], ring: &[Point], bound: f64) -> Vec<Point> {
+    let key = |p: Point| (p.x.to_bits(), p.y.to_bits());
+    let n = ring.len();
+    let at: HashMap<(u64, u64), usize> =
+        ring.iter().enumerate().map(|(k, &p)| (key(p), k)).collect();
+    let m = piece.len();
+    let chord = |k: usize| {
+        let (a, b) = (at[&key(piece[k])], at[&key(piece[(k + 1) % m])]);
+        b != (a + 1) % n
+    };
+    // Each chord end slides back along the piece's own outline edge next to it: it stays
+    // on the outline the set held apart from every other ring.
+    let mut moved = piece.to_vec();
+    let slide = |from: Point, toward: Point| {
+        let len = from.dist(toward);
+        from + (toward - from) * ((0.5 * PIECE_GAP).min(0.3 * len) / len.max(1e-9))
+    };
+    for k in (0..m).filter(|&k| chord(k)) {
+        let (before, after) = ((k + m - 1) % m, (k + 1) % m);
+        if !chord(before) {
+            moved[k] = slide(piece[k], piece[before]);
+        }
+        if !chord(after) {
+            moved[after] = slide(piece[after], piece[(k + 2) % m]);
+        }
+    }
+    let mut out = Vec::with_capacity(m);
+    for k in 0..m {
+        out.push(moved[k]);
+        let (p, q) = (moved[k], moved[(k + 1) % m]);
+        if chord(k) {
+            let parts = (p.dist(q) / (0.9 * bound)).ceil().max(1.0) as usize;
+            out.extend((1..parts).map(|s| p + (q - p) * (s as f64 / parts as f64)));
+        }
+    }
+    out
+}
+
 /// The two lobes of `ring` (region on the left) cut at its neck, each a ring with the
 /// region on the left, or `None` when it has none.
 pub fn neck_cut(ring: &[Point], image: &Field) -> Option<(Vec<Point>, Vec<Point>)> {
+    neck_cut_along(ring, image, None)
+}
+
+/// [`neck_cut`], or with `line` (a field high along a septum: a taught run's
+/// P(boundary)) a cut that field chooses and judges: the chord is the shortest once its
+/// length is discounted by [`LINE_PULL`] × `line`'s mean along its middle half (among
+/// chords inside the ring that leave lobes of a daughter's share), and it is cut when
+/// both lobes are rods of at least [`LINE_LOBE_ASPECT`], `line` rises by
+/// [`LINE_CONTRAST`] from the lobes' cores to the chord, and the chord is at most
+/// [`LINE_WIDE`] widths. Rods touching end to end over their full width have no neck
+/// the outline shows; the classifier's boundary band across the contact does.
+pub fn neck_cut_along(
+    ring: &[Point],
+    image: &Field,
+    line: Option<&Field>,
+) -> Option<(Vec<Point>, Vec<Point>)> {
     let n = ring.len();
     if n < 8 {
         return None;
@@ -92,6 +216,12 @@ pub fn neck_cut(ring: &[Point], image: &Field) -> Option<(Vec<Point>, Vec<Point>
         arc[i + 1] = arc[i] + ring[i].dist(ring[(i + 1) % n]);
     }
     let per = arc[n];
+    // Prefix sums of the edges' cross products: any lobe's area in O(1).
+    let mut cross = vec![0.0; n];
+    for i in 1..n {
+        cross[i] = cross[i - 1] + ring[i - 1].cross(ring[i]);
+    }
+    let total = signed_area(ring);
     // The shortest chord whose ends are at least a fifth of the perimeter apart both ways.
     let mut best: Option<(f64, usize, usize)> = None;
     for i in 0..n {
@@ -101,12 +231,31 @@ pub fn neck_cut(ring: &[Point], image: &Field) -> Option<(Vec<Point>, Vec<Point>
                 continue;
             }
             let d = ring[i].dist(ring[j]);
-            if best.is_none_or(|b| d < b.0) {
-                best = Some((d, i, j));
+            let score = match line {
+                Some(f) if best.is_none_or(|b| d * (1.0 - LINE_PULL) < b.0) => {
+                    // Only chords that leave two lobes of the sizes a cut needs and run
+                    // inside: a chord along the rim (where the boundary class also
+                    // fires) would win and then be refused.
+                    let lobe = 0.5 * (cross[j] - cross[i] + ring[j].cross(ring[i]));
+                    let rest = total - lobe;
+                    let mid = (ring[i] + ring[j]) * 0.5;
+                    if lobe.min(rest) < MIN_DAUGHTER_SHARE * lobe.max(rest)
+                        || winding_number(ring, mid) == 0
+                    {
+                        continue;
+                    }
+                    d * (1.0 - LINE_PULL * along(f, ring[i], ring[j]).clamp(0.0, 1.0))
+                }
+                Some(_) => continue,
+                None => d,
+            };
+            if best.is_none_or(|b| score < b.0) {
+                best = Some((score, i, j));
             }
         }
     }
-    let (d, i, j) = best?;
+    let (_, i, j) = best?;
+    let d = ring[i].dist(ring[j]);
     // A cell cut off by the frame's edge is not measured across it (its outline runs
     // along the edge, and the band outside is not in the image).
     let (w, h) = (image.width as f64, image.height as f64);
@@ -140,6 +289,13 @@ pub fn neck_cut(ring: &[Point], image: &Field) -> Option<(Vec<Point>, Vec<Point>
     }
     let (la, lb) = (elongation(&a), elongation(&b));
     let width = la.1.min(lb.1);
+    if let Some(f) = line {
+        let contrast = along(f, ring[i], ring[j]) - 0.5 * (core_mean(f, &a) + core_mean(f, &b));
+        let ok = la.0.min(lb.0) >= LINE_LOBE_ASPECT
+            && contrast >= LINE_CONTRAST
+            && d < LINE_WIDE * width;
+        return ok.then_some((a, b));
+    }
     let line = septum(ring, &a, &b, ring[i], ring[j], image);
     if la.0 < MIN_LOBE_ASPECT || lb.0 < MIN_LOBE_ASPECT {
         // Round lobes: sister nuclei a thin gap apart that the contour still bridges.
@@ -148,6 +304,35 @@ pub fn neck_cut(ring: &[Point], image: &Field) -> Option<(Vec<Point>, Vec<Point>
         return ok.then_some((a, b));
     }
     (d < (NARROW + line) * width).then_some((a, b))
+}
+
+/// How much a chord's length is discounted at most for a septum along it
+/// ([`neck_cut_along`]).
+pub const LINE_PULL: f64 = 0.9;
+
+/// `f`'s mean along the middle of lobe `l`'s major axis (±2 px about its centroid).
+fn core_mean(f: &Field, l: &[Point]) -> f64 {
+    let c = area2_centroid(l).1;
+    let axis = elongation(l).2;
+    (-2..=2)
+        .map(|k| f.sample(c + axis * (k as f64)))
+        .sum::<f64>()
+        / 5.0
+}
+
+/// Along a septum field ([`neck_cut_along`]): each lobe at least this elongated.
+pub const LINE_LOBE_ASPECT: f64 = 2.0;
+/// Along a septum field: the least rise of the field from the lobes' cores to the chord.
+pub const LINE_CONTRAST: f64 = 0.45;
+/// Along a septum field: the widest chord cut, as a share of the thinner lobe's width.
+pub const LINE_WIDE: f64 = 1.25;
+
+/// `f`'s mean along the middle half of the chord `p`–`q`.
+fn along(f: &Field, p: Point, q: Point) -> f64 {
+    (0..=8)
+        .map(|k| f.sample(p + (q - p) * (0.25 + 0.5 * k as f64 / 8.0)))
+        .sum::<f64>()
+        / 9.0
 }
 
 /// How background-like the image is along the middle half of the chord `p`–`q`: 0 as
