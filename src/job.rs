@@ -22,6 +22,7 @@ use crate::learn::guide::{self, Guide};
 use crate::learn::{Taught, Teach, TeachError, BOUNDARY};
 use std::borrow::Cow;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 /// What [`Job::start_from`] returns: the evolver, the shapes it started from, what
 /// taught it, and the image kept compactly when it was given.
@@ -231,7 +232,10 @@ impl Job {
         }
         let (ev, kept) = match (&guide, image) {
             (Some(g), image) => {
-                let ev = Evolver::new(&g.field, &shapes, g.params.clone())?;
+                let mut ev = Evolver::new(&g.field, &shapes, g.params.clone())?;
+                // Rods merged end to end: cut where the boundary class crosses them.
+                let p = &g.probabilities;
+                ev.cut_when_finished(Arc::new(Field::new(p.width, p.height, p.of(BOUNDARY))));
                 // The run reads the probabilities: the image is kept as it is.
                 let kept = match image {
                     Cow::Owned(i) => Some(Stored::new(i)),
@@ -276,11 +280,6 @@ impl Job {
         let image = image.expect("an owned image is kept");
         ev.free_coarse_levels();
         self.drive(&mut ev)?;
-        if let Some(t) = &taught {
-            // Rods merged end to end: cut where the boundary class crosses them.
-            let p = &t.probabilities;
-            ev.cut_at_necks(&Field::new(p.width, p.height, p.of(BOUNDARY)));
-        }
         ev.filter_clutter();
         Ok(JobRun {
             ev,

@@ -3,9 +3,12 @@
 //! neck in their outline (the tracker's rule alone leaves them whole), but the
 //! classifier's boundary band across the contact shows the septum.
 
+use std::sync::Arc;
 use topocontour::contours::ContourSet;
+use topocontour::evolution::{Evolver, Modality, Mode, Params, Polarity, Shape};
 use topocontour::geometry::{signed_area, Aabb, Point};
 use topocontour::image::field::Field;
+use topocontour::learn::guide::ONE_LEVEL;
 use topocontour::track::neck::{cut_set_at_necks, neck_cut};
 
 const W: usize = 96;
@@ -120,4 +123,70 @@ fn rods_merged_end_to_end_are_cut_where_the_boundary_class_crosses_them() {
         (pieces[2].0 - 8.0).abs() < 0.5 && (pieces[2].1 - 88.0).abs() < 0.5,
         "{pieces:?}"
     );
+}
+
+/// The cut is made inside the run, in the frame it finishes
+/// ([`Evolver::cut_when_finished`]): the app stepping frame by frame and the CLI running
+/// to the end ([`Evolver::run`], as `Job::run` drives it) get the same cut objects.
+#[test]
+fn the_cut_comes_when_the_run_finishes_whether_stepped_or_run() {
+    let caps = [(14.0, 82.0, 24.0, 6.0), (14.0, 82.0, 38.0, 5.0)];
+    // The rods bright on dark, as a probability image reads.
+    let mut data = vec![0.05f32; W * H];
+    for y in 0..H {
+        for x in 0..W {
+            let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
+            if caps
+                .iter()
+                .any(|&(x0, x1, cy, r)| (px - px.clamp(x0, x1)).abs().hypot(py - cy) < r)
+            {
+                data[y * W + x] = 0.95;
+            }
+        }
+    }
+    let image = Field::new(W, H, data);
+    let seeds: Vec<Shape> = caps
+        .iter()
+        .map(|&(x0, x1, cy, r)| Shape::Disk {
+            center: Point::new((x0 + x1) / 2.0, cy),
+            radius: r - 2.0,
+        })
+        .collect();
+    let params = Params {
+        mode: Mode::Track,
+        polarity: Polarity::Bright,
+        modality: Modality::Generic,
+        local: false,
+        coarsest_side: ONE_LEVEL,
+        ..Params::default()
+    };
+    let line = Arc::new(boundary(&caps, true));
+    let rings = |ev: &Evolver| -> Vec<Vec<Point>> {
+        let set = ev.contours();
+        set.contour_ids().map(|id| set.ring_points(id)).collect()
+    };
+    let mut uncut = Evolver::new(&image, &seeds, params.clone()).unwrap();
+    uncut.run();
+    assert_eq!(uncut.contours().contour_count(), 2);
+
+    let mut stepped = Evolver::new(&image, &seeds, params.clone()).unwrap();
+    stepped.cut_when_finished(line.clone());
+    while !stepped.is_finished() {
+        assert_eq!(
+            stepped.contours().contour_count(),
+            2,
+            "no cut before the end"
+        );
+        stepped.step();
+    }
+    assert_eq!(stepped.contours().contour_count(), 3, "cut at the contact");
+    stepped
+        .contours()
+        .sanity_check()
+        .expect("exact simple rings");
+
+    let mut run = Evolver::new(&image, &seeds, params).unwrap();
+    run.cut_when_finished(line);
+    run.run();
+    assert_eq!(rings(&run), rings(&stepped));
 }

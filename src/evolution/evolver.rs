@@ -55,6 +55,9 @@ pub struct Evolver {
     reopened: usize,
     /// Free the coarse levels on reaching level 0 ([`Evolver::free_coarse_levels`]).
     free_coarse: bool,
+    /// A taught run's P(boundary), to cut its regions at the septa it shows when the run
+    /// finishes ([`Evolver::cut_when_finished`]); taken when the cut is made.
+    septa: Option<Arc<Field>>,
 }
 
 impl Evolver {
@@ -136,6 +139,7 @@ impl Evolver {
             start_params,
             reopened: 0,
             free_coarse: false,
+            septa: None,
         })
     }
 
@@ -277,6 +281,11 @@ impl Evolver {
             }
         }
         self.log_events(&frame.events);
+        if self.is_finished() {
+            if let Some(line) = self.septa.take() {
+                self.cut_at_necks(&line);
+            }
+        }
         frame.level = self.schedule.level;
         frame.converged = self.schedule.converged;
         frame
@@ -436,6 +445,13 @@ impl Evolver {
     /// clutter filter of seed 003 §4.
     pub fn filter_clutter(&mut self) {
         crate::contours::measure::drop_small(self.engine.contours_mut(), self.params.min_area);
+    }
+
+    /// Cuts the regions at the septa `line` shows ([`Evolver::cut_at_necks`]) once, in the
+    /// frame the run finishes: inside the run, so the app playing a job and the CLI
+    /// running it to its end cut at the same point, before any edit made after the end.
+    pub fn cut_when_finished(&mut self, line: Arc<Field>) {
+        self.septa = Some(line);
     }
 
     /// Cuts each outer region with no hole where `line` (a taught run's P(boundary))
