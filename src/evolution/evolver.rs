@@ -447,9 +447,10 @@ impl Evolver {
         crate::contours::measure::drop_small(self.engine.contours_mut(), self.params.min_area);
     }
 
-    /// Cuts the regions at the septa `line` shows ([`Evolver::cut_at_necks`]) once, in the
-    /// frame the run finishes: inside the run, so the app playing a job and the CLI
-    /// running it to its end cut at the same point, before any edit made after the end.
+    /// Cuts the regions at the septa `line` shows
+    /// ([`crate::track::neck::cut_set_at_necks`]) once, in the frame the run finishes:
+    /// inside the run, so the app playing a job and the CLI running it to its end cut at
+    /// the same point, before any edit made after the end.
     pub fn cut_when_finished(&mut self, line: Arc<Field>) {
         self.septa = Some(line);
     }
@@ -457,7 +458,8 @@ impl Evolver {
     /// Cuts each outer region with no hole where `line` (a taught run's P(boundary))
     /// shows a septum across it ([`crate::track::neck::cut_set_at_necks`]); an implicit
     /// run is left as it is (its contours are its level set's). Returns the cuts made.
-    pub fn cut_at_necks(&mut self, line: &Field) -> usize {
+    /// Only in the frame the run finishes ([`Evolver::cut_when_finished`]).
+    fn cut_at_necks(&mut self, line: &Field) -> usize {
         if self.implicit().is_some() {
             return 0;
         }

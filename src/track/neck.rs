@@ -347,12 +347,7 @@ fn septum(ring: &[Point], a: &[Point], b: &[Point], p: Point, q: Point, image: &
         }
         s / n.max(1) as f64
     };
-    let core = |l: &[Point]| {
-        let c = area2_centroid(l).1;
-        let axis = elongation(l).2;
-        mean(&mut (-2..=2).map(move |k| c + axis * (k as f64)))
-    };
-    let inside = 0.5 * (core(a) + core(b));
+    let inside = 0.5 * (core_mean(image, a) + core_mean(image, b));
     let n = ring.len();
     let (w, h) = (image.width as f64, image.height as f64);
     let outside = mean(
@@ -364,7 +359,7 @@ fn septum(ring: &[Point], a: &[Point], b: &[Point], p: Point, q: Point, image: &
             })
             .filter(|p| p.x >= 0.0 && p.y >= 0.0 && p.x < w && p.y < h),
     );
-    let chord = mean(&mut (0..=8).map(|k| p + (q - p) * (0.25 + 0.5 * k as f64 / 8.0)));
+    let chord = along(image, p, q);
     let span = outside - inside;
     if span.abs() < 1e-9 {
         return 0.0;
