@@ -32,7 +32,8 @@
 //!   event comes, and the cut is their division (children of the mother, as a split's);
 //! - a new cell (on frame 0 or picked up later) that does not stand out from the band
 //!   around it ([`contrast`]) is dropped: seeds on a gently darker corner of uneven
-//!   light settle into such blobs.
+//!   light settle into such blobs; a carried cell is dropped, ending its track, below
+//!   the blobs' own bound (a cell that faded, or a blob that grew from a speck).
 //!
 //! Memory holds the frame being tracked and the contours and labels of the one before.
 
@@ -377,9 +378,12 @@ impl Tracker {
                     .into_iter()
                     .filter(|o| {
                         k += 1;
-                        owner.is_some()
-                            || contrast::separation(&o.ring, k, &raster, image, polarity)
-                                .is_none_or(|z| z >= contrast::MIN_SEPARATION)
+                        let least = match owner {
+                            Some(_) => contrast::MIN_CARRIED_SEPARATION,
+                            None => contrast::MIN_SEPARATION,
+                        };
+                        contrast::separation(&o.ring, k, &raster, image, polarity)
+                            .is_none_or(|z| z >= least)
                     })
                     .collect();
                 (owner, group)
