@@ -276,31 +276,42 @@ fn a_cell_leaving_ends_its_track() {
     assert_eq!(track(&frames), "1 0 5 0\n2 0 2 0\n");
 }
 
-#[test]
-fn a_brighter_corner_of_uneven_light_is_not_a_cell() {
-    // Fluorescence lit unevenly: one corner a shade brighter (a broad ramp, noisy), and
-    // one nucleus. Seeds on the ramp settle into blobs barely apart from their
-    // surroundings; only the nucleus is a cell.
-    let mut state = 12345u64;
+/// `cells(t)` for `frames` frames, lit unevenly: the upper right corner brighter by up to
+/// `ramp` (a broad ramp), with uniform noise (±0.15) drawn from `seed`.
+fn on_a_ramp(
+    frames: usize,
+    ramp: f32,
+    seed: u64,
+    cells: impl Fn(usize) -> Vec<(Point, Point, f64)>,
+) -> Vec<Field> {
+    let mut state = seed;
     let mut noise = move || {
         state = state
             .wrapping_mul(6364136223846793005)
             .wrapping_add(1442695040888963407);
         ((state >> 33) as f64 / (1u64 << 31) as f64 - 0.5) as f32 * 0.3
     };
-    let frames: Vec<Field> = (0..3)
+    (0..frames)
         .map(|t| {
-            let mut f = frame(&[disk(30.0 + t as f64, 32.0, 9.0)]);
+            let mut f = frame(&cells(t));
             for y in 0..H {
                 for x in 0..W {
-                    let ramp =
+                    let r =
                         ((x as f32 - 60.0) / 36.0).max(0.0) * ((40.0 - y as f32) / 40.0).max(0.0);
-                    f.data[y * W + x] += 0.3 * ramp + noise();
+                    f.data[y * W + x] += ramp * r + noise();
                 }
             }
             f
         })
-        .collect();
+        .collect()
+}
+
+#[test]
+fn a_brighter_corner_of_uneven_light_is_not_a_cell() {
+    // Fluorescence lit unevenly: one corner a shade brighter (a broad ramp, noisy), and
+    // one nucleus. Seeds on the ramp settle into blobs barely apart from their
+    // surroundings; only the nucleus is a cell.
+    let frames = on_a_ramp(3, 0.3, 12345, |t| vec![disk(30.0 + t as f64, 32.0, 9.0)]);
     assert_eq!(track(&frames), "1 0 2 0\n");
 }
 
@@ -309,30 +320,13 @@ fn a_cell_that_fades_on_a_brighter_corner_ends_its_track() {
     // A nucleus on the brighter corner of uneven light goes dark after frame 1: its
     // contour, carried on, settles into a blob of the ramp, which must not live on as
     // the nucleus's track (a carried cell is judged by its separation too).
-    let mut state = 777u64;
-    let mut noise = move || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((state >> 33) as f64 / (1u64 << 31) as f64 - 0.5) as f32 * 0.3
-    };
-    let frames: Vec<Field> = (0..6)
-        .map(|t| {
-            let mut cells = vec![disk(30.0 + t as f64, 32.0, 9.0)];
-            if t < 2 {
-                cells.push(disk(80.0, 14.0, 8.0));
-            }
-            let mut f = frame(&cells);
-            for y in 0..H {
-                for x in 0..W {
-                    let ramp =
-                        ((x as f32 - 60.0) / 36.0).max(0.0) * ((40.0 - y as f32) / 40.0).max(0.0);
-                    f.data[y * W + x] += 0.5 * ramp + noise();
-                }
-            }
-            f
-        })
-        .collect();
+    let frames = on_a_ramp(6, 0.5, 777, |t| {
+        let mut cells = vec![disk(30.0 + t as f64, 32.0, 9.0)];
+        if t < 2 {
+            cells.push(disk(80.0, 14.0, 8.0));
+        }
+        cells
+    });
     // The fading nucleus's track ends with it (before: "2 0 5 0", a blob to the end).
     // A seed the ramp gave in frame 1, a shade past the new-cell bound there, lives on.
     let lines = track(&frames);
