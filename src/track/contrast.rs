@@ -2,7 +2,7 @@
 //! gradient (the darker corner of an unevenly lit phase-contrast frame) settles into a
 //! blob only a shade darker than its surroundings, which no real cell is. The measure is
 //! the difference of means between the object and a band just outside it, in units of
-//! their pooled standard deviation (a two-sample separation, as Cohen's d): real cells
+//! their pooled standard deviation (a two-sample separation, as Cohen's d): new cells
 //! and nuclei, textured or dim, stand at 2.4 or more on every movie measured; the
 //! gradient blobs at 1.2 or less (docs/decisions.md). A carried track is judged against
 //! the blobs' bound only ([`MIN_CARRIED_SEPARATION`]): a cell fading for a frame keeps its

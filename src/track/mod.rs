@@ -354,8 +354,9 @@ impl Tracker {
         Ok((pieces, ev.frames(), Some(ev.image().clone())))
     }
 
-    /// `groups` without the new cells that do not stand out from their surroundings
-    /// ([`contrast`]).
+    /// `groups` without the cells that do not stand out from their surroundings
+    /// ([`contrast`]): new cells below [`contrast::MIN_SEPARATION`], carried ones below
+    /// [`contrast::MIN_CARRIED_SEPARATION`].
     fn without_faint(
         &self,
         groups: Vec<(Option<u32>, Vec<TrackedObject>)>,
