@@ -8,13 +8,7 @@ use std::collections::HashSet;
 /// The outline (pixel corners, region on one side) of the 4-connected part of basin `l`
 /// that holds pixel `at`, after removing its pixels that touch another basin, so
 /// neighbouring outlines keep a gap. `None` if fewer than 9 pixels remain.
-pub(crate) fn basin_outline(
-    labels: &[u32],
-    l: u32,
-    at: usize,
-    w: usize,
-    h: usize,
-) -> Option<Vec<Point>> {
+pub fn basin_outline(labels: &[u32], l: u32, at: usize, w: usize, h: usize) -> Option<Vec<Point>> {
     let get = |x: isize, y: isize| -> u32 {
         if x < 0 || y < 0 || x >= w as isize || y >= h as isize {
             0

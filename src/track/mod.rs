@@ -35,12 +35,19 @@
 //!   light settle into such blobs; a carried cell is dropped, ending its track, below
 //!   the blobs' own bound (a cell that faded, or a blob that grew from a speck).
 //!
+//! - the cells that touch another are divided again on each frame's image
+//!   ([`partition`]: a marker watershed from their cores, so the line between two cells
+//!   lies on the seam the image shows, not where their fronts first met); on frame 0,
+//!   from automatic seeds only, two touching cells with no seam between them are one cell
+//!   its seeds cut in two, and are joined before any track starts.
+//!
 //! Memory holds the frame being tracked and the contours and labels of the one before.
 
 pub mod carry;
 pub mod contrast;
 pub mod lineage;
 pub mod neck;
+pub mod partition;
 mod resume;
 
 pub use lineage::{Division, Lineage, Track};
@@ -193,6 +200,7 @@ impl Tracker {
             shapes.push(shrunk(ring, self.settings.shrink));
             origins.push(Origin::Carried(*track));
         }
+        let automatic = t == 0 && self.init.is_empty();
         if t == 0 {
             for s in std::mem::take(&mut self.init) {
                 shapes.push(s);
@@ -206,7 +214,8 @@ impl Tracker {
             }
         }
         let evolved = self.evolve(image, &shapes)?;
-        let (origins, pieces, evolution_frames) = if t > 0 && self.settings.new_cells {
+        let model = evolved.2.clone();
+        let (origins, mut pieces, evolution_frames) = if t > 0 && self.settings.new_cells {
             self.with_new_cells(image, origins, evolved)?
         } else {
             if t == 0 {
@@ -221,6 +230,9 @@ impl Tracker {
             divisions: Vec::new(),
             evolution_frames,
         };
+        if let (Some(m), true) = (model.as_deref(), automatic) {
+            partition::join_pieces(&mut pieces, m);
+        }
         let groups = claim(&origins, pieces);
         let groups = self.without_faint(groups, image);
         for (owner, group) in groups {
@@ -236,6 +248,9 @@ impl Tracker {
             self.settle(owner, cut, &mut frame);
         }
         frame.objects.sort_by_key(|o| o.track);
+        if let Some(m) = model.as_deref() {
+            partition::divide_again(&mut frame.objects, m);
+        }
         self.live = frame
             .objects
             .iter()
@@ -426,7 +441,7 @@ impl Tracker {
 }
 
 /// A cell of outline `ring` (region on the left), not yet given its track.
-fn object(ring: Vec<Point>) -> TrackedObject {
+pub(crate) fn object(ring: Vec<Point>) -> TrackedObject {
     let (a2, centroid) = crate::geometry::area2_centroid(&ring);
     TrackedObject {
         track: 0,
