@@ -248,20 +248,24 @@ impl Tracker {
             self.settle(owner, cut, &mut frame);
         }
         frame.objects.sort_by_key(|o| o.track);
+        let raster = |objects: &[TrackedObject]| {
+            let rings: Vec<(u32, &[Point])> = objects
+                .iter()
+                .map(|o| (o.track, o.ring.as_slice()))
+                .collect();
+            label_raster(&rings, w, h)
+        };
+        self.labels = raster(&frame.objects);
         if let Some(m) = model.as_deref() {
-            partition::divide_again(&mut frame.objects, m);
+            if partition::divide_again(&mut frame.objects, &self.labels, m) {
+                self.labels = raster(&frame.objects);
+            }
         }
         self.live = frame
             .objects
             .iter()
             .map(|o| (o.track, o.ring.clone()))
             .collect();
-        let rings: Vec<(u32, &[Point])> = frame
-            .objects
-            .iter()
-            .map(|o| (o.track, o.ring.as_slice()))
-            .collect();
-        self.labels = label_raster(&rings, w, h);
         self.frame += 1;
         Ok(frame)
     }

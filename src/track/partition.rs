@@ -21,7 +21,8 @@ use crate::image::distance::distance_transform;
 use crate::image::field::{neighbours4, Field};
 use crate::image::outline::basin_outline;
 use crate::image::ImageModel;
-use crate::track::{carry::label_raster, carry::labels_of, object, TrackedObject};
+use crate::track::{carry::labels_of, object, TrackedObject};
+use std::collections::HashMap;
 
 /// A marker is the part of a cell at least this share of its deepest inside distance.
 pub const CORE: f32 = 0.5;
@@ -33,90 +34,133 @@ pub const JOIN_SHARE: f64 = 0.7;
 /// Frame 0: and when their contact runs at least this share of the thinner one's width.
 pub const JOIN_CONTACT: f64 = 0.8;
 
-/// The cells of a label raster (`w`×`h`, labels 1..=n, 0 outside every cell) against
-/// one frame's region score.
-struct Cells<'a> {
-    labels: &'a [u32],
+/// One group of touching cells of a label raster (labels 1..=n, 0 outside every cell)
+/// against one frame's region score, in the window that holds the group: the work is
+/// the touching cells' area, not the frame's.
+struct Cells {
+    /// The window's labels (other cells read as 0), its size and where its top-left
+    /// pixel lies in the frame.
+    labels: Vec<u32>,
     w: usize,
     h: usize,
-    /// Per label: touches another.
-    touching: Vec<bool>,
-    /// Inside distance of each pixel of a touching cell: to the nearest other pixel.
+    origin: (usize, usize),
+    /// Inside distance of each pixel of a cell: to the nearest pixel of another.
     dist: Field,
-    /// Per label: the deepest inside distance and its pixel.
-    deepest: Vec<(f32, usize)>,
+    /// Per label of the group: the deepest inside distance and its pixel.
+    deepest: HashMap<u32, (f32, usize)>,
     /// The region score, lightly smoothed so noise does not steer the flood.
     score: Field,
 }
 
-impl<'a> Cells<'a> {
-    fn new(labels: &'a [u32], model: &ImageModel) -> Option<Self> {
-        let (w, h) = model.size();
-        let n = labels.iter().copied().max().unwrap_or(0) as usize;
-        if n < 2 || labels.len() != w * h {
-            return None;
+/// The groups of touching cells of `frame` (`w`×`h`): per group its labels and the box
+/// (x0, y0, x1, y1, inclusive) of their pixels.
+fn groups(frame: &[u32], w: usize, h: usize) -> Vec<(Vec<u32>, [usize; 4])> {
+    let n = frame.iter().copied().max().unwrap_or(0) as usize;
+    let mut root: Vec<u32> = (0..=n as u32).collect();
+    let mut touching = vec![false; n + 1];
+    for (i, j) in contacts(frame, w, h) {
+        let (a, b) = (frame[i], frame[j]);
+        touching[a as usize] = true;
+        touching[b as usize] = true;
+        let (ra, rb) = (find(&mut root, a), find(&mut root, b));
+        root[ra.max(rb) as usize] = ra.min(rb);
+    }
+    let mut boxes: HashMap<u32, [usize; 4]> = HashMap::new();
+    for (i, &l) in frame.iter().enumerate() {
+        if l != 0 && touching[l as usize] {
+            let (x, y) = (i % w, i / w);
+            let b = boxes.entry(l).or_insert([x, y, x, y]);
+            *b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
         }
-        let mut touching = vec![false; n + 1];
-        for (i, j) in contacts(labels, w, h) {
-            touching[labels[i] as usize] = true;
-            touching[labels[j] as usize] = true;
-        }
-        if !touching.iter().any(|&t| t) {
-            return None;
-        }
-        let touches = |l: u32| l != 0 && touching[l as usize];
-        let interior: Vec<bool> = (0..w * h)
-            .map(|i| {
-                let l = labels[i];
-                touches(l) && neighbours4(i, w, h).all(|j| labels[j] == l)
+    }
+    let mut out: HashMap<u32, (Vec<u32>, [usize; 4])> = HashMap::new();
+    for l in 1..=n as u32 {
+        let Some(b) = boxes.get(&l) else { continue };
+        let r = find(&mut root, l);
+        let g = out.entry(r).or_insert((Vec::new(), *b));
+        g.0.push(l);
+        g.1 = [
+            g.1[0].min(b[0]),
+            g.1[1].min(b[1]),
+            g.1[2].max(b[2]),
+            g.1[3].max(b[3]),
+        ];
+    }
+    let mut out: Vec<(Vec<u32>, [usize; 4])> = out.into_values().collect();
+    out.sort_by_key(|g| g.0[0]);
+    out
+}
+
+fn find(root: &mut [u32], mut l: u32) -> u32 {
+    while root[l as usize] != l {
+        root[l as usize] = root[root[l as usize] as usize];
+        l = root[l as usize];
+    }
+    l
+}
+
+impl Cells {
+    /// The group `members` of `frame`, in the box `b` of their pixels.
+    fn new(frame: &[u32], model: &ImageModel, members: &[u32], b: [usize; 4]) -> Self {
+        let (fw, fh) = model.size();
+        // Two pixels of margin: the outline follower and the blur read one beyond.
+        let (x0, y0) = (b[0].saturating_sub(2), b[1].saturating_sub(2));
+        let (x1, y1) = ((b[2] + 3).min(fw), (b[3] + 3).min(fh));
+        let (w, h) = (x1 - x0, y1 - y0);
+        let at = |i: usize| (y0 + i / w) * fw + x0 + i % w;
+        let labels: Vec<u32> = (0..w * h)
+            .map(|i| match frame[at(i)] {
+                l if members.binary_search(&l).is_ok() => l,
+                _ => 0,
             })
             .collect();
+        let interior: Vec<bool> = (0..w * h)
+            .map(|i| labels[i] != 0 && neighbours4(i, w, h).all(|j| labels[j] == labels[i]))
+            .collect();
         let dist = distance_transform(&interior, w, h);
-        let mut deepest = vec![(0f32, usize::MAX); n + 1];
+        let mut deepest: HashMap<u32, (f32, usize)> =
+            members.iter().map(|&l| (l, (0.0, usize::MAX))).collect();
         for (i, &l) in labels.iter().enumerate() {
-            let d = dist.data[i];
-            if touches(l) && d > deepest[l as usize].0 {
-                deepest[l as usize] = (d, i);
+            if l != 0 {
+                let d = deepest.entry(l).or_insert((0.0, usize::MAX));
+                if dist.data[i] > d.0 {
+                    *d = (dist.data[i], i);
+                }
             }
         }
         let view = model.level(0);
-        let score = Field::new(
-            w,
-            h,
-            (0..w * h)
-                .map(|i| {
-                    if touches(labels[i]) {
-                        view.pixel_score(i) as f32
-                    } else {
-                        0.0
-                    }
-                })
-                .collect(),
-        )
-        .blur(&[0.25, 0.5, 0.25]);
-        Some(Cells {
+        let raw = (0..w * h)
+            .map(|i| {
+                if labels[i] != 0 {
+                    view.pixel_score(at(i)) as f32
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let score = Field::new(w, h, raw).blur(&[0.25, 0.5, 0.25]);
+        Cells {
             labels,
             w,
             h,
-            touching,
+            origin: (x0, y0),
             dist,
             deepest,
             score,
-        })
+        }
     }
 
-    fn touches(&self, l: u32) -> bool {
-        l != 0 && self.touching[l as usize]
-    }
-
-    /// Whether pixel `i` is in its cell's core (a marker).
+    /// Whether window pixel `i` is in its cell's core (a marker).
     fn in_core(&self, i: usize) -> bool {
         let l = self.labels[i];
-        let (d, _) = self.deepest[l as usize];
-        self.touches(l) && d > 0.0 && self.dist.data[i] >= CORE * d
+        l != 0
+            && self
+                .deepest
+                .get(&l)
+                .is_some_and(|&(d, _)| d > 0.0 && self.dist.data[i] >= CORE * d)
     }
 
-    /// The marker watershed of the touching cells (see the module doc).
+    /// The marker watershed of the group (see the module doc).
     fn basins(&self) -> Vec<u32> {
         let mut basin = vec![0u32; self.w * self.h];
         let mut heap = std::collections::BinaryHeap::new();
@@ -128,7 +172,7 @@ impl<'a> Cells<'a> {
         }
         while let Some((_, i)) = heap.pop() {
             for j in neighbours4(i, self.w, self.h) {
-                if basin[j] == 0 && self.touches(self.labels[j]) {
+                if basin[j] == 0 && self.labels[j] != 0 {
                     basin[j] = basin[i];
                     heap.push((ordered_bits(self.score.data[j]), j));
                 }
@@ -137,13 +181,18 @@ impl<'a> Cells<'a> {
         basin
     }
 
-    /// The ring of basin `l` of `basin`, region on the left (positive area, as evolved).
+    /// The ring of basin `l` of `basin` in frame coordinates, region on the left
+    /// (positive area, as evolved).
     fn ring(&self, basin: &[u32], l: u32) -> Option<Vec<Point>> {
-        let (d, at) = self.deepest[l as usize];
+        let &(d, at) = self.deepest.get(&l)?;
         if d <= 0.0 {
             return None;
         }
-        let mut ring = basin_outline(basin, l, at, self.w, self.h)?;
+        let shift = Point::new(self.origin.0 as f64, self.origin.1 as f64);
+        let mut ring: Vec<Point> = basin_outline(basin, l, at, self.w, self.h)?
+            .into_iter()
+            .map(|p| p + shift)
+            .collect();
         if crate::geometry::signed_area(&ring) < 0.0 {
             ring.reverse();
         }
@@ -151,31 +200,30 @@ impl<'a> Cells<'a> {
     }
 }
 
-/// 4-neighbouring pixel pairs `(i, j)` of two different cells.
-fn contacts(labels: &[u32], w: usize, h: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
-    (0..w * h).flat_map(move |i| {
+/// 4-neighbouring pixel pairs `(i, j)` of two different cells (`j` right of or below `i`).
+fn contacts(labels: &[u32], w: usize, h: usize) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    for (i, &a) in labels.iter().enumerate() {
+        if a == 0 {
+            continue;
+        }
         let (x, y) = (i % w, i / w);
-        let right = (x + 1 < w).then_some(i + 1);
-        let below = (y + 1 < h).then_some(i + w);
-        [right, below].into_iter().flatten().filter_map(move |j| {
-            let (a, b) = (labels[i], labels[j]);
-            (a != 0 && b != 0 && a != b).then_some((i, j))
-        })
-    })
+        if x + 1 < w && labels[i + 1] != 0 && labels[i + 1] != a {
+            out.push((i, i + 1));
+        }
+        if y + 1 < h && labels[i + w] != 0 && labels[i + w] != a {
+            out.push((i, i + w));
+        }
+    }
+    out
 }
 
-/// `objects` (one frame's cells, by track) with those that touch another divided again
-/// by the watershed of `model`'s finest region score ([`repartition`]).
-pub fn divide_again(objects: &mut [TrackedObject], model: &ImageModel) {
-    let (w, h) = model.size();
-    let rings: Vec<(u32, &[Point])> = objects
-        .iter()
-        .map(|o| (o.track, o.ring.as_slice()))
-        .collect();
-    let mut new: std::collections::HashMap<u32, Vec<Point>> =
-        repartition(&label_raster(&rings, w, h), model)
-            .into_iter()
-            .collect();
+/// `objects` (one frame's cells, by track; `labels` their raster) with those that touch
+/// another divided again by the watershed of `model`'s finest region score
+/// ([`repartition`]). Whether any changed.
+pub fn divide_again(objects: &mut [TrackedObject], labels: &[u32], model: &ImageModel) -> bool {
+    let mut new: HashMap<u32, Vec<Point>> = repartition(labels, model).into_iter().collect();
+    let changed = !new.is_empty();
     for o in objects.iter_mut() {
         if let Some(ring) = new.remove(&o.track) {
             *o = TrackedObject {
@@ -184,6 +232,7 @@ pub fn divide_again(objects: &mut [TrackedObject], model: &ImageModel) {
             };
         }
     }
+    changed
 }
 
 /// Frame 0's `pieces` (per shape) with the touching ones that are one cell ([`joins`])
@@ -192,7 +241,7 @@ pub fn join_pieces(pieces: &mut [Vec<TrackedObject>], model: &ImageModel) {
     let (w, h) = model.size();
     let labels = labels_of(pieces, w, h);
     let roots = joins(&labels, model);
-    let mut rings: std::collections::HashMap<u32, Vec<Point>> =
+    let mut rings: HashMap<u32, Vec<Point>> =
         joined_rings(&labels, &roots, model).into_iter().collect();
     let mut k = 0u32;
     for g in pieces.iter_mut() {
@@ -210,19 +259,27 @@ pub fn join_pieces(pieces: &mut [Vec<TrackedObject>], model: &ImageModel) {
     }
 }
 
-/// New rings for the cells of the label raster `labels` (`w`×`h`, 0 outside every cell)
-/// that touch another, divided again by the watershed of `model`'s finest region score
-/// (see the module doc): `(label, ring)`, in label order. Cells that touch none, and a
-/// cell whose basin is too small for a ring, are not listed.
+/// New rings for the cells of the label raster `labels` (the model's size, 0 outside
+/// every cell) that touch another, divided again by the watershed of `model`'s finest
+/// region score (see the module doc): `(label, ring)`, in label order. Cells that touch
+/// none, and a cell whose basin is too small for a ring, are not listed.
 pub fn repartition(labels: &[u32], model: &ImageModel) -> Vec<(u32, Vec<Point>)> {
-    let Some(cells) = Cells::new(labels, model) else {
+    let (w, h) = model.size();
+    if labels.len() != w * h {
         return Vec::new();
-    };
-    let basin = cells.basins();
-    (1..cells.touching.len() as u32)
-        .filter(|&l| cells.touches(l))
-        .filter_map(|l| cells.ring(&basin, l).map(|r| (l, r)))
-        .collect()
+    }
+    let mut out: Vec<(u32, Vec<Point>)> = Vec::new();
+    for (members, b) in groups(labels, w, h) {
+        let cells = Cells::new(labels, model, &members, b);
+        let basin = cells.basins();
+        out.extend(
+            members
+                .iter()
+                .filter_map(|&l| cells.ring(&basin, l).map(|r| (l, r))),
+        );
+    }
+    out.sort_by_key(|r| r.0);
+    out
 }
 
 /// Frame 0's touching cells that are one cell cut in two by its seeds: pairs whose
@@ -231,50 +288,43 @@ pub fn repartition(labels: &[u32], model: &ImageModel) -> Vec<(u32, Vec<Point>)>
 /// phase contrast's bright line, fluorescence's dark valley — lowers it). Returns, per
 /// label (index = label), the label it joins (itself when none), joined transitively.
 pub fn joins(labels: &[u32], model: &ImageModel) -> Vec<u32> {
+    let (w, h) = model.size();
     let n = labels.iter().copied().max().unwrap_or(0) as usize;
     let mut root: Vec<u32> = (0..=n as u32).collect();
-    let Some(cells) = Cells::new(labels, model) else {
+    if labels.len() != w * h {
         return root;
-    };
-    // Per label, its core's mean score; per pair, the contact's sum and pixels.
-    let mut core = vec![(0f64, 0usize); n + 1];
-    for i in 0..labels.len() {
-        if cells.in_core(i) {
-            let c = &mut core[labels[i] as usize];
-            c.0 += cells.score.data[i] as f64;
-            c.1 += 1;
+    }
+    for (members, b) in groups(labels, w, h) {
+        let cells = Cells::new(labels, model, &members, b);
+        // Per label, its core's mean score; per pair, the contact's sum and pixels.
+        let mut core: HashMap<u32, (f64, usize)> = HashMap::new();
+        for i in 0..cells.labels.len() {
+            if cells.in_core(i) {
+                let c = core.entry(cells.labels[i]).or_default();
+                c.0 += cells.score.data[i] as f64;
+                c.1 += 1;
+            }
         }
-    }
-    let mut pairs: std::collections::BTreeMap<(u32, u32), (f64, usize)> = Default::default();
-    for (i, j) in contacts(labels, cells.w, cells.h) {
-        let (a, b) = (labels[i], labels[j]);
-        let e = pairs.entry((a.min(b), a.max(b))).or_default();
-        e.0 += 0.5 * (cells.score.data[i] + cells.score.data[j]) as f64;
-        e.1 += 1;
-    }
-    fn find(root: &mut [u32], mut l: u32) -> u32 {
-        while root[l as usize] != l {
-            root[l as usize] = root[root[l as usize] as usize];
-            l = root[l as usize];
+        let mut pairs: std::collections::BTreeMap<(u32, u32), (f64, usize)> = Default::default();
+        for (i, j) in contacts(&cells.labels, cells.w, cells.h) {
+            let (a, b) = (cells.labels[i], cells.labels[j]);
+            let e = pairs.entry((a.min(b), a.max(b))).or_default();
+            e.0 += 0.5 * (cells.score.data[i] + cells.score.data[j]) as f64;
+            e.1 += 1;
         }
-        l
-    }
-    for ((a, b), (sum, count)) in pairs {
-        let mean = |l: u32| {
-            let (s, k) = core[l as usize];
-            (k > 0).then(|| s / k as f64)
-        };
-        let (Some(ca), Some(cb)) = (mean(a), mean(b)) else {
-            continue;
-        };
-        let weaker = ca.min(cb);
-        let thinner = 2.0 * cells.deepest[a as usize].0.min(cells.deepest[b as usize].0) as f64;
-        if weaker > 0.0
-            && sum / count as f64 >= JOIN_SHARE * weaker
-            && count as f64 >= JOIN_CONTACT * thinner
-        {
-            let (ra, rb) = (find(&mut root, a), find(&mut root, b));
-            if ra != rb {
+        let mean = |l: u32| core.get(&l).filter(|c| c.1 > 0).map(|&(s, k)| s / k as f64);
+        let depth = |l: u32| cells.deepest.get(&l).map_or(0.0, |d| d.0 as f64);
+        for ((a, b), (sum, count)) in pairs {
+            let (Some(ca), Some(cb)) = (mean(a), mean(b)) else {
+                continue;
+            };
+            let weaker = ca.min(cb);
+            let thinner = 2.0 * depth(a).min(depth(b));
+            if weaker > 0.0
+                && sum / count as f64 >= JOIN_SHARE * weaker
+                && count as f64 >= JOIN_CONTACT * thinner
+            {
+                let (ra, rb) = (find(&mut root, a), find(&mut root, b));
                 root[ra.max(rb) as usize] = ra.min(rb);
             }
         }
@@ -295,6 +345,9 @@ pub fn joined_rings(labels: &[u32], roots: &[u32], model: &ImageModel) -> Vec<(u
         if r as usize != l {
             joined[r as usize] = true;
         }
+    }
+    if !joined.iter().any(|&j| j) {
+        return Vec::new();
     }
     // Each union's deepest pixel, where its outline is followed from.
     let inside: Vec<bool> = (0..w * h)
