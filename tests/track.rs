@@ -10,8 +10,11 @@ use topocontour::track::{TrackSettings, Tracker};
 const W: usize = 96;
 const H: usize = 64;
 
+/// A cell as a capsule: the two ends of its axis and its radius (a disk when they meet).
+type Capsule = (Point, Point, f64);
+
 /// A frame with bright capsules (segments `a`–`b` thickened by `r`) on a dark background.
-fn frame(capsules: &[(Point, Point, f64)]) -> Field {
+fn frame(capsules: &[Capsule]) -> Field {
     let mut data = vec![0.15f32; W * H];
     for y in 0..H {
         for x in 0..W {
@@ -33,7 +36,7 @@ fn frame(capsules: &[(Point, Point, f64)]) -> Field {
     Field::new(W, H, data)
 }
 
-fn disk(x: f64, y: f64, r: f64) -> (Point, Point, f64) {
+fn disk(x: f64, y: f64, r: f64) -> Capsule {
     (Point::new(x, y), Point::new(x, y), r)
 }
 
@@ -282,7 +285,7 @@ fn on_a_ramp(
     frames: usize,
     ramp: f32,
     seed: u64,
-    cells: impl Fn(usize) -> Vec<(Point, Point, f64)>,
+    cells: impl Fn(usize) -> Vec<Capsule>,
 ) -> Vec<Field> {
     let mut state = seed;
     let mut noise = move || {
@@ -337,7 +340,7 @@ fn a_cell_that_fades_on_a_brighter_corner_ends_its_track() {
 /// Two rods lying side by side, turning together about the pair's centre by `step`
 /// degrees a frame with a darker seam along their contact, blurred: per frame the image
 /// and each rod's capsule.
-fn turning_pair(frames: usize, step: f64) -> Vec<(Field, [(Point, Point, f64); 2])> {
+fn turning_pair(frames: usize, step: f64) -> Vec<(Field, [Capsule; 2])> {
     let c = Point::new(48.0, 32.0);
     (0..frames)
         .map(|t| {
