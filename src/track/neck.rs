@@ -6,13 +6,16 @@
 //! width), and the image along the neck turns from the cell's own dark to a brighter
 //! line (the caps' notches blurred together, then the contact line). Neither alone
 //! times it: a mother's last waist is as narrow as some necks at birth, and the line is
-//! faint at birth. So the cut is the shortest chord between two ring points far apart
-//! along the ring, taken when both lobes it leaves are rods and the chord is narrower
-//! than [`NARROW`] of the rods' width plus the septum share (how background-like the
-//! image is along the chord, 0 inside a cell, 1 outside): a neck at half the
-//! width is cut only with a line along it, a full-width contact with a full line (rods
-//! side by side that turned apart). A straight or bent single rod, a kidney and an
-//! ellipse have no such neck and no line along it.
+//! faint at birth. What does tell them apart is how the outline bends at the neck's
+//! ends: two caps meeting make a sharp notch, a waist narrows smoothly. So the cut is
+//! the shortest chord between two ring points far apart along the ring, taken when both
+//! lobes it leaves are rods and the chord is narrower than [`NARROW`] of the rods' width,
+//! widened by the septum share (how background-like the image is along the chord, 0
+//! inside a cell, 1 outside; [`SEPTUM_WIDENS`]) and by how sharply the outline turns
+//! inward at the chord's ends ([`NOTCH_WIDENS`]): caps meeting at half the width are cut,
+//! a mother's waist as narrow is not, a full-width contact needs a full line and sharp
+//! corners (rods side by side that turned apart). A straight or bent single rod, a
+//! kidney and an ellipse have no such neck and no line along it.
 //!
 //! Round lobes (a dividing nucleus) are cut only where the neck is much narrower than
 //! the lobes ([`ROUND_NARROW`]), the image along it is half-way to the background or more
@@ -42,10 +45,18 @@ use crate::image::Field;
 use crate::track::MIN_DAUGHTER_SHARE;
 use std::collections::{HashMap, HashSet};
 
-/// The widest neck cut with no line along it, as a share of the thinner rod's width
-/// (the mother's waist before division is wider; two caps just meeting are narrower).
-/// Fitted on synthetic phase-contrast movies (seeds 1, 2): see docs/decisions.md.
-pub const NARROW: f64 = 0.47;
+/// The widest neck cut with no line along it and an outline that does not bend at its
+/// ends, as a share of the thinner rod's width (a mother's last waist is about 0.55).
+/// Fitted on synthetic phase-contrast movies (seeds 1–6): see docs/decisions.md.
+pub const NARROW: f64 = 0.34;
+
+/// How much wider (in rod widths) a cut neck may be per unit of septum share along it.
+pub const SEPTUM_WIDENS: f64 = 0.5;
+
+/// How much wider (in rod widths) a cut neck may be per radian the outline turns inward
+/// at its two ends ([`notch_turn`]): two caps just meeting turn it by about 1.6 rad
+/// together, a constricting mother's smooth waist by about 0.6.
+pub const NOTCH_WIDENS: f64 = 0.2;
 
 /// Each lobe at least this elongated (major over minor axis of its second moments): a
 /// rod. A nucleus pinches into round lobes, and the contour splits it by itself when
@@ -303,7 +314,29 @@ pub fn neck_cut_along(
             d < ROUND_NARROW * width && line >= ROUND_GAP && aa.min(ab) >= ROUND_SHARE * aa.max(ab);
         return ok.then_some((a, b));
     }
-    (d < (NARROW + line) * width).then_some((a, b))
+    let turn = notch_turn(ring, i, width) + notch_turn(ring, j, width);
+    (d < (NARROW + SEPTUM_WIDENS * line + NOTCH_WIDENS * turn) * width).then_some((a, b))
+}
+
+/// How far the outline turns inward (radians, ≥ 0) at `ring[k]`: the angle between the
+/// chords to the ring points an arc of a quarter `width` before and after it.
+fn notch_turn(ring: &[Point], k: usize, width: f64) -> f64 {
+    let n = ring.len();
+    let reach = 0.25 * width;
+    let walk = |step: usize| {
+        let (mut s, mut c) = (0.0, k);
+        while s < reach {
+            let next = (c + step) % n;
+            s += ring[c].dist(ring[next]);
+            c = next;
+            if c == k {
+                break;
+            }
+        }
+        ring[c]
+    };
+    let (t1, t2) = (ring[k] - walk(n - 1), walk(1) - ring[k]);
+    (-t1.cross(t2).atan2(t1.x * t2.x + t1.y * t2.y)).max(0.0)
 }
 
 /// How much a chord's length is discounted at most for a septum along it
@@ -457,6 +490,60 @@ mod tests {
                 .collect()
         };
         assert!(neck_cut(&union_of(&disk(20.0), &disk(39.5)), &img).is_none());
+    }
+
+    #[test]
+    fn a_mothers_gentle_waist_is_not_cut_and_a_deep_one_is() {
+        // A rod of width 9 whose waist narrows smoothly (a Gaussian over 0.45 widths, as a
+        // constricting mother): at 0.55 of the width the outline bends gently, unlike two
+        // caps meeting at the same width; pinched to 0.3 it is cut by its narrowness alone.
+        let img = flat();
+        let waist = |pinch: f64| -> Vec<Point> {
+            let (r, x0, x1, y) = (4.5, 12.0, 48.0, 30.0);
+            let half = |x: f64| {
+                let u = (x - 0.5 * (x0 + x1)) / (0.45 * 2.0 * r);
+                r * (1.0 - pinch * (-u * u).exp())
+            };
+            let mut pts = Vec::new();
+            for k in 0..=72 {
+                let x = x0 + (x1 - x0) * k as f64 / 72.0;
+                pts.push(Point::new(x, y - half(x)));
+            }
+            for k in 1..16 {
+                let a = -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
+                pts.push(Point::new(x1 + r * a.cos(), y + r * a.sin()));
+            }
+            for k in 0..=72 {
+                let x = x1 - (x1 - x0) * k as f64 / 72.0;
+                pts.push(Point::new(x, y + half(x)));
+            }
+            for k in 1..16 {
+                let a = std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
+                pts.push(Point::new(x0 + r * a.cos(), y + r * a.sin()));
+            }
+            if signed_area(&pts) < 0.0 {
+                pts.reverse();
+            }
+            pts
+        };
+        assert!(neck_cut(&waist(0.45), &img).is_none());
+        let (p, q) = neck_cut(&waist(0.7), &img).expect("a deep waist is a neck");
+        let (cp, cq) = (centre(&p), centre(&q));
+        assert!((cp.x.min(cq.x) - 21.0).abs() < 4.0 && (cp.x.max(cq.x) - 39.0).abs() < 4.0);
+        // Two caps meeting as wide as that gentle waist: the outline turns sharply at the
+        // neck's ends, so it is cut.
+        let a = rod(Point::new(10.0, 20.0), Point::new(22.5, 20.0), 4.5);
+        let b = rod(Point::new(30.3, 20.0), Point::new(42.8, 20.0), 4.5);
+        let ring = union_of(&a, &b);
+        let neck = ring
+            .iter()
+            .filter(|p| (p.x - 26.4).abs() < 0.8)
+            .map(|p| (p.y - 20.0).abs());
+        assert!(
+            neck.fold(f64::MAX, f64::min) > 2.0,
+            "the caps meet over half the width"
+        );
+        assert!(neck_cut(&ring, &img).is_some());
     }
 
     /// The outline of the union of two convex rings overlapping a little along x (the
