@@ -54,7 +54,7 @@ pub const NARROW: f64 = 0.34;
 pub const SEPTUM_WIDENS: f64 = 0.5;
 
 /// How much wider (in rod widths) a cut neck may be per radian the outline turns inward
-/// at its two ends ([`notch_turn`]): two caps just meeting turn it by about 1.6 rad
+/// at its two ends (`notch_turn`): two caps just meeting turn it by about 1.6 rad
 /// together, a constricting mother's smooth waist by about 0.6.
 pub const NOTCH_WIDENS: f64 = 0.2;
 
