@@ -375,35 +375,33 @@ impl Tracker {
 
     /// `groups` without the cells that do not stand out from their surroundings
     /// ([`contrast`]): new cells below [`contrast::MIN_SEPARATION`], carried ones below
-    /// [`contrast::MIN_CARRIED_SEPARATION`].
+    /// [`contrast::MIN_CARRIED_SEPARATION`] ([`contrast::standing_out`]).
     fn without_faint(
         &self,
         groups: Vec<(Option<u32>, Vec<TrackedObject>)>,
         image: &Field,
     ) -> Vec<(Option<u32>, Vec<TrackedObject>)> {
-        let (w, h) = (image.width, image.height);
-        let all: Vec<&TrackedObject> = groups.iter().flat_map(|(_, g)| g).collect();
-        let rings: Vec<(u32, &[Point])> = all
-            .iter()
-            .enumerate()
-            .map(|(k, o)| (k as u32 + 1, o.ring.as_slice()))
-            .collect();
-        let raster = label_raster(&rings, w, h);
         let polarity = self.settings.params.polarity;
-        let mut k = 0u32;
+        let objects: Vec<(&[Point], f64)> = groups
+            .iter()
+            .flat_map(|(owner, g)| {
+                let least = match owner {
+                    Some(_) => contrast::MIN_CARRIED_SEPARATION,
+                    None => contrast::MIN_SEPARATION,
+                };
+                g.iter().map(move |o| (o.ring.as_slice(), least))
+            })
+            .collect();
+        let keep = contrast::standing_out(&objects, image, polarity);
+        let mut k = 0usize;
         groups
             .into_iter()
             .map(|(owner, group)| {
                 let group = group
                     .into_iter()
-                    .filter(|o| {
+                    .filter(|_| {
                         k += 1;
-                        let least = match owner {
-                            Some(_) => contrast::MIN_CARRIED_SEPARATION,
-                            None => contrast::MIN_SEPARATION,
-                        };
-                        contrast::separation(&o.ring, k, &raster, image, polarity)
-                            .is_none_or(|z| z >= least)
+                        keep[k - 1]
                     })
                     .collect();
                 (owner, group)
