@@ -230,15 +230,21 @@ impl Tracker {
             divisions: Vec::new(),
             evolution_frames,
         };
-        if let (Some(m), true) = (model.as_deref(), automatic) {
-            partition::join_pieces(&mut pieces, m);
-        }
+        let joined = match (model.as_deref(), automatic) {
+            (Some(m), true) => partition::join_pieces(&mut pieces, m),
+            _ => Vec::new(),
+        };
         let groups = claim(&origins, pieces);
         let groups = self.without_faint(groups, image);
         for (owner, group) in groups {
             // Sisters touching end to end never pinch apart in the image: cut at necks.
             let mut cut: Vec<TrackedObject> = Vec::with_capacity(group.len());
             for o in group {
+                // Frame 0's joined cells were judged one cell ([`partition::join_pieces`]).
+                if joined.contains(&o.ring) {
+                    cut.push(o);
+                    continue;
+                }
                 match neck::cut_at_necks(&o.ring, image, None) {
                     Some(rings) => cut.extend(rings.into_iter().map(object)),
                     None => cut.push(o),

@@ -237,13 +237,19 @@ pub fn divide_again(objects: &mut [TrackedObject], labels: &[u32], model: &Image
 
 /// Frame 0's `pieces` (per shape) with the touching ones that are one cell ([`joins`])
 /// joined: the group's first piece takes the outline of their union, the others go.
-pub fn join_pieces(pieces: &mut [Vec<TrackedObject>], model: &ImageModel) {
+/// Returns the joined outlines. They were judged one cell, and the neck rule must not
+/// judge them again: the union's pixel outline keeps a notch at each end of the
+/// contact, where the two pieces' fronts met rounded, that the image does not show
+/// (`docs/decisions.md`, 2026-12-04: such cells were cut at frame 0 and divided a few
+/// frames later in the truth).
+pub fn join_pieces(pieces: &mut [Vec<TrackedObject>], model: &ImageModel) -> Vec<Vec<Point>> {
     let (w, h) = model.size();
     let labels = labels_of(pieces, w, h);
     let roots = joins(&labels, model);
     let mut rings: HashMap<u32, Vec<Point>> =
         joined_rings(&labels, &roots, model).into_iter().collect();
     let mut k = 0u32;
+    let mut joined = Vec::new();
     for g in pieces.iter_mut() {
         g.retain_mut(|o| {
             k += 1;
@@ -251,12 +257,14 @@ pub fn join_pieces(pieces: &mut [Vec<TrackedObject>], model: &ImageModel) {
                 return false;
             }
             if let Some(ring) = rings.remove(&k) {
+                joined.push(ring.clone());
                 *o = object(ring);
             }
             true
         });
         g.sort_by(|a, b| b.area.total_cmp(&a.area));
     }
+    joined
 }
 
 /// New rings for the cells of the label raster `labels` (the model's size, 0 outside
@@ -446,5 +454,28 @@ mod tests {
         assert!(area > 700.0 && area <= 800.0, "{area}");
         let labels = divided(34);
         assert_eq!(joins(&labels, &block(0.3)), [0, 1, 2]);
+    }
+
+    #[test]
+    fn join_pieces_returns_the_outlines_it_joined() {
+        // Two halves of the block, one shape each (seeds cut it in two).
+        let half = |x0: f64, x1: f64| {
+            object(vec![
+                Point::new(x0, 20.5),
+                Point::new(x1, 20.5),
+                Point::new(x1, 39.5),
+                Point::new(x0, 39.5),
+            ])
+        };
+        let pieces = || vec![vec![half(20.5, 33.9)], vec![half(34.1, 59.5)]];
+        let mut p = pieces();
+        let joined = join_pieces(&mut p, &block(1.0));
+        assert_eq!(joined.len(), 1);
+        assert_eq!(p[0][0].ring, joined[0]);
+        assert!(p[1].is_empty());
+        // With a seam between them they stay two, and nothing is returned.
+        let mut p = pieces();
+        assert!(join_pieces(&mut p, &block(0.3)).is_empty());
+        assert_eq!((p[0].len(), p[1].len()), (1, 1));
     }
 }
