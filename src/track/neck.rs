@@ -46,17 +46,19 @@ use crate::track::MIN_DAUGHTER_SHARE;
 use std::collections::{HashMap, HashSet};
 
 /// The widest neck cut with no line along it and an outline that does not bend at its
-/// ends, as a share of the thinner rod's width (a mother's last waist is about 0.55).
-/// Fitted on synthetic phase-contrast movies (seeds 1–6): see docs/decisions.md.
-pub const NARROW: f64 = 0.34;
+/// ends, as a share of the thinner rod's width (a mother's last waist is about 0.55):
+/// a neck is told by its notch and its line, hardly by its width alone. Fitted on
+/// synthetic phase-contrast movies (seeds 1–12, checked on 13–24 and on noisier, blurred
+/// and thinner renderings): see docs/decisions.md.
+pub const NARROW: f64 = 0.1;
 
 /// How much wider (in rod widths) a cut neck may be per unit of septum share along it.
-pub const SEPTUM_WIDENS: f64 = 0.5;
+pub const SEPTUM_WIDENS: f64 = 0.6;
 
 /// How much wider (in rod widths) a cut neck may be per radian the outline turns inward
 /// at its two ends (`notch_turn`): two caps just meeting turn it by about 1.6 rad
 /// together, a constricting mother's smooth waist by about 0.6.
-pub const NOTCH_WIDENS: f64 = 0.2;
+pub const NOTCH_WIDENS: f64 = 0.475;
 
 /// Each lobe at least this elongated (major over minor axis of its second moments): a
 /// rod. A nucleus pinches into round lobes, and the contour splits it by itself when
