@@ -39,3 +39,91 @@ fn colour_png_and_jpeg_become_luminance() {
         );
     }
 }
+
+/// A little-endian 8-bit RGB TIFF of `pages` pages of `w`×`h`, each stored as three
+/// planes one after the other (PlanarConfiguration 2, as tifffile writes a (3, H, W)
+/// array): red `r`, green `g`, blue `b` everywhere.
+fn planar_rgb(pages: usize, w: u32, h: u32, (r, g, b): (u8, u8, u8)) -> Vec<u8> {
+    let mut out = b"II*\0\0\0\0\0".to_vec();
+    let plane = w * h;
+    let mut dirs = Vec::new();
+    for _ in 0..pages {
+        let data = out.len() as u32;
+        for v in [r, g, b] {
+            out.extend(std::iter::repeat_n(v, plane as usize));
+        }
+        let bits = out.len() as u32;
+        out.extend([8u16, 8, 8].iter().flat_map(|v| v.to_le_bytes()));
+        let offsets = out.len() as u32;
+        out.extend((0..3).flat_map(|k| (data + k * plane).to_le_bytes()));
+        let counts = out.len() as u32;
+        out.extend((0..3).flat_map(|_| plane.to_le_bytes()));
+        dirs.push((bits, offsets, counts));
+    }
+    let first = out.len() as u32;
+    out[4..8].copy_from_slice(&first.to_le_bytes());
+    for (i, (bits, offsets, counts)) in dirs.into_iter().enumerate() {
+        let entries: [(u16, u16, u32, u32); 10] = [
+            (256, 4, 1, w),
+            (257, 4, 1, h),
+            (258, 3, 3, bits),
+            (259, 3, 1, 1),
+            (262, 3, 1, 2),
+            (273, 4, 3, offsets),
+            (277, 3, 1, 3),
+            (278, 4, 1, h),
+            (279, 4, 3, counts),
+            (284, 3, 1, 2),
+        ];
+        out.extend((entries.len() as u16).to_le_bytes());
+        for (tag, kind, count, value) in entries {
+            out.extend(tag.to_le_bytes());
+            out.extend(kind.to_le_bytes());
+            out.extend(count.to_le_bytes());
+            out.extend(value.to_le_bytes());
+        }
+        let next = if i + 1 < pages {
+            out.len() as u32 + 4
+        } else {
+            0
+        };
+        out.extend(next.to_le_bytes());
+    }
+    out
+}
+
+#[test]
+fn planar_rgb_pages_become_luminance_of_all_three_planes() {
+    let p = tmp("planar.tif");
+    std::fs::write(&p, planar_rgb(2, 6, 4, (255, 0, 0))).unwrap();
+    // Page 2 is decoded here, page 1 by the image crate: both read red, not the first
+    // plane as grey (1.0) nor a refusal.
+    for page in 0..2 {
+        let (f, info) = topocontour::io::load_image_page(&p, page).unwrap();
+        assert_eq!((f.width, f.height, info.pages), (6, 4, 2));
+        assert!(
+            (f.at(2, 1) - 0.2126).abs() < 1e-3,
+            "page {page}: {}",
+            f.at(2, 1)
+        );
+    }
+}
+
+#[test]
+fn a_movie_of_one_colour_page_says_so() {
+    // Three frames written as one (3, H, W) array become one RGB page.
+    let p = tmp("one-colour-page.tif");
+    std::fs::write(&p, planar_rgb(1, 16, 16, (10, 200, 30))).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_topocontour"))
+        .arg("track")
+        .arg(&p)
+        .args(["--object", "dark", "--ctc"])
+        .arg(tmp("one-colour-page-out"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("one page of 3 samples per pixel"), "{err}");
+    assert!(!tmp("one-colour-page-out").exists());
+}

@@ -37,6 +37,14 @@ pub enum MovieError {
         /// Frames found.
         frames: usize,
     },
+    /// One page of several samples per pixel: a colour image, or frames written as one.
+    #[error("{path} holds one page of {samples} samples per pixel (a colour image): a movie needs one page per frame (tifffile writes a ({samples}, height, width) array as one colour page unless given photometric='minisblack')")]
+    OneColourPage {
+        /// The movie.
+        path: String,
+        /// Samples per pixel of its page.
+        samples: usize,
+    },
     /// A frame whose size differs from the first.
     #[error("{path}: frame {frame} is {width}×{height} but frame 1 is {first_width}×{first_height}; every frame of a movie must have the same size")]
     SizeDiffers {
@@ -106,6 +114,14 @@ impl Movie {
                 });
             }
             frames += 1;
+        }
+        if let (1, Source::Stack(p)) = (frames, &movie.source) {
+            if let Some(samples @ 3..) = super::tiff_info::first_page_samples(p) {
+                return Err(MovieError::OneColourPage {
+                    path: movie.name,
+                    samples,
+                });
+            }
         }
         if frames < 2 {
             return Err(MovieError::TooShort {

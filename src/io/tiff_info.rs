@@ -12,6 +12,8 @@
 //! are scaled from their own finite range to [0, 1], whatever page they are; a NaN sample
 //! (no data) takes the mean of the finite ones, so it reads as neither object nor
 //! background, and ±∞ the range's ends: no non-finite value ever reaches the engine.
+//! Colour pages stored as planes one after the other (PlanarConfiguration 2, as
+//! tifffile writes a (3, H, W) array) are read whole, not as their first plane.
 
 use super::load::LoadError;
 use crate::evolution::Field;
@@ -117,6 +119,18 @@ fn pixel_size(dec: &mut Decoder<Cursor<&[u8]>>) -> Option<PixelSize> {
     })
 }
 
+/// Samples per pixel of the first page of the TIFF at `path` (3 for RGB), if it reads.
+pub fn first_page_samples(path: &std::path::Path) -> Option<usize> {
+    let file = std::fs::File::open(path).ok()?;
+    let mut dec = Decoder::new(std::io::BufReader::new(file)).ok()?;
+    Some(match dec.colortype().ok()? {
+        ColorType::Gray(_) => 1,
+        ColorType::RGB(_) => 3,
+        ColorType::RGBA(_) => 4,
+        _ => return None,
+    })
+}
+
 /// Decodes page `page` (0-based) of a TIFF as luminance in [0, 1].
 pub fn decode_page(bytes: &[u8], name: &str, page: usize) -> Result<Field, LoadError> {
     let err = |reason: String| LoadError::Decode {
@@ -156,7 +170,17 @@ pub(crate) fn decode_current<R: std::io::Read + std::io::Seek>(
             )))
         }
     };
-    let values: Vec<f32> = match dec.read_image().map_err(|e| err(e.to_string()))? {
+    // Planes stored one after the other (PlanarConfiguration 2, as tifffile writes a
+    // (3, H, W) array): `read_image` would return the first plane only.
+    let planar = dec
+        .find_tag_unsigned::<u16>(Tag::PlanarConfiguration)
+        .ok()
+        .flatten()
+        == Some(2);
+    let mut decoded = DecodingResult::U8(Vec::new());
+    dec.read_image_to_buffer(&mut decoded)
+        .map_err(|e| err(e.to_string()))?;
+    let values: Vec<f32> = match decoded {
         DecodingResult::U8(v) => v.iter().map(|&x| x as f32 / 255.0).collect(),
         DecodingResult::U16(v) => v.iter().map(|&x| x as f32 / 65535.0).collect(),
         DecodingResult::F32(v) => float_samples(v.iter().map(|&x| x as f64)),
@@ -176,13 +200,14 @@ pub(crate) fn decode_current<R: std::io::Read + std::io::Seek>(
         )));
     }
     // Rec. 709 luma, as the first page gets from the image crate.
+    let sample = |i: usize, c: usize| match planar {
+        true => values[c * n + i],
+        false => values[i * channels + c],
+    };
     let data = (0..n)
         .map(|i| match channels {
             1 => values[i],
-            _ => {
-                let p = &values[i * channels..];
-                0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]
-            }
+            _ => 0.2126 * sample(i, 0) + 0.7152 * sample(i, 1) + 0.0722 * sample(i, 2),
         })
         .collect();
     Ok(Field::new(w as usize, h as usize, data))
