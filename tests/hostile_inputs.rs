@@ -2,6 +2,8 @@
 //! exhaust memory, second round): each must finish within a deadline with a result or a
 //! clear refusal.
 
+mod common;
+
 use std::sync::mpsc;
 use std::time::Duration;
 use topocontour::evolution::{Edit, Evolver, Field, Params, Shape};
@@ -103,15 +105,7 @@ fn many_directories(n: usize, strips: u32) -> Vec<u8> {
         (279, 4, strips, counts),
     ];
     for i in 0..n {
-        out.extend((entries.len() as u16).to_le_bytes());
-        for (tag, kind, count, value) in entries {
-            out.extend(tag.to_le_bytes());
-            out.extend(kind.to_le_bytes());
-            out.extend(count.to_le_bytes());
-            out.extend(value.to_le_bytes());
-        }
-        let next = if i + 1 < n { out.len() as u32 + 4 } else { 0 };
-        out.extend(next.to_le_bytes());
+        common::tiff_directory(&mut out, &entries, i + 1 == n);
     }
     out
 }

@@ -1,5 +1,7 @@
 //! Image loading: PNG, JPEG, TIFF, 8 and 16 bit, colour to luminance.
 
+mod common;
+
 use topocontour::io::load_image;
 
 fn tmp(name: &str) -> std::path::PathBuf {
@@ -75,19 +77,7 @@ fn planar_rgb(pages: usize, w: u32, h: u32, (r, g, b): (u8, u8, u8)) -> Vec<u8> 
             (279, 4, 3, counts),
             (284, 3, 1, 2),
         ];
-        out.extend((entries.len() as u16).to_le_bytes());
-        for (tag, kind, count, value) in entries {
-            out.extend(tag.to_le_bytes());
-            out.extend(kind.to_le_bytes());
-            out.extend(count.to_le_bytes());
-            out.extend(value.to_le_bytes());
-        }
-        let next = if i + 1 < pages {
-            out.len() as u32 + 4
-        } else {
-            0
-        };
-        out.extend(next.to_le_bytes());
+        common::tiff_directory(&mut out, &entries, i + 1 == pages);
     }
     out
 }
@@ -114,7 +104,7 @@ fn a_movie_of_one_colour_page_says_so() {
     // Three frames written as one (3, H, W) array become one RGB page.
     let p = tmp("one-colour-page.tif");
     std::fs::write(&p, planar_rgb(1, 16, 16, (10, 200, 30))).unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_topocontour"))
+    let out = common::bin()
         .arg("track")
         .arg(&p)
         .args(["--object", "dark", "--ctc"])

@@ -89,3 +89,17 @@ pub fn disks_png(path: &Path, w: u32, h: u32, disks: &[(f64, f64, f64)]) {
 pub fn read_json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
+
+/// Appends a little-endian TIFF image directory to `out`: its `(tag, type, count,
+/// value or offset)` entries and the offset of the next directory (0 for none).
+pub fn tiff_directory(out: &mut Vec<u8>, entries: &[(u16, u16, u32, u32)], last: bool) {
+    out.extend((entries.len() as u16).to_le_bytes());
+    for &(tag, kind, count, value) in entries {
+        out.extend(tag.to_le_bytes());
+        out.extend(kind.to_le_bytes());
+        out.extend(count.to_le_bytes());
+        out.extend(value.to_le_bytes());
+    }
+    let next = if last { 0 } else { out.len() as u32 + 4 };
+    out.extend(next.to_le_bytes());
+}
