@@ -11,13 +11,40 @@ fn tmp(name: &str) -> std::path::PathBuf {
 #[test]
 fn sixteen_bit_tiff_keeps_its_precision() {
     let img = image::ImageBuffer::<image::Luma<u16>, _>::from_fn(4, 3, |x, y| {
-        image::Luma([(x * 1000 + y * 7) as u16])
+        image::Luma([(x * 10000 + y * 7) as u16])
     });
     let p = tmp("a.tif");
     img.save(&p).unwrap();
     let f = load_image(&p).unwrap();
     assert_eq!((f.width, f.height), (4, 3));
-    assert!((f.at(3, 2) as f64 - 3014.0 / 65535.0).abs() < 1e-6);
+    assert!((f.at(3, 2) as f64 - 30014.0 / 65535.0).abs() < 1e-6);
+}
+
+#[test]
+fn a_sixteen_bit_image_of_a_narrow_range_reads_as_its_full_range() {
+    // A camera's 97–276 in a 16-bit file: read as it is, its contrast is below the
+    // model's least and the whole image was one object.
+    let disk = |x: u32, y: u32| (x as f64 - 16.0).hypot(y as f64 - 16.0) < 8.0;
+    let img = image::ImageBuffer::<image::Luma<u16>, _>::from_fn(32, 32, |x, y| {
+        image::Luma([if disk(x, y) { 97 } else { 276 }])
+    });
+    let p = tmp("narrow.tif");
+    img.save(&p).unwrap();
+    let f = load_image(&p).unwrap();
+    assert_eq!((f.at(16, 16), f.at(1, 1)), (0.0, 1.0));
+    // An array handed over (Python, napari) reads the same.
+    let v: Vec<u16> = img.into_raw();
+    let g = topocontour::io::field_from_samples("a", 32, 32, topocontour::io::Samples::U16(&v));
+    assert_eq!(g.unwrap().data, f.data);
+    let out = common::bin()
+        .args(["segment", "--object", "dark", "--auto-seeds", "--json"])
+        .arg(tmp("narrow.json"))
+        .arg(&p)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains(": 1 object,"), "{err}");
 }
 
 #[test]

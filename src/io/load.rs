@@ -118,6 +118,8 @@ pub fn load_image_page(path: &Path, page: usize) -> Result<(Field, ImageInfo), L
             reason: format!("there is no page {} (the file holds {pages})", page + 1),
         });
     };
+    let mut field = field;
+    super::movie::widen_narrow(&mut field);
     Ok((field, ImageInfo { pages, pixel_size }))
 }
 

@@ -250,17 +250,40 @@ impl Iterator for Frames {
 /// Maps the 0.1 % and 99.9 % quantiles of `f` to 0 and 1, clamping beyond; a flat frame
 /// stays as it is.
 pub fn normalise(f: &mut Field) {
+    if let Some((lo, hi)) = quantile_range(f) {
+        stretch(f, lo, hi);
+    }
+}
+
+/// A still image whose 0.1 % and 99.9 % quantiles lie closer than this (intensities in
+/// [0, 1]) is [`normalise`]d: fewer grey levels than a full 8-bit image has in sixteen,
+/// as a 12-bit camera's image in a 16-bit file, or a 16-bit one using 97–276. The
+/// intensity model's least contrast is absolute ([`crate::image::intensity::MIN_CONTRAST`]),
+/// and such an image read as it is was one object covering everything. Images of a
+/// wider range keep their values: a run on them is what it was.
+pub const NARROW_RANGE: f32 = 1.0 / 16.0;
+
+/// `f` [`normalise`]d when its range is narrower than [`NARROW_RANGE`].
+pub fn widen_narrow(f: &mut Field) {
+    if let Some((lo, hi)) = quantile_range(f).filter(|&(lo, hi)| hi - lo < NARROW_RANGE) {
+        stretch(f, lo, hi);
+    }
+}
+
+/// The 0.1 % and 99.9 % quantiles of `f`, if they differ.
+fn quantile_range(f: &Field) -> Option<(f32, f32)> {
     let n = f.data.len();
     if n == 0 {
-        return;
+        return None;
     }
     let mut v = f.data.clone();
     let k = ((n as f64 * CLIP_SHARE) as usize).min(n - 1);
     let lo = *v.select_nth_unstable_by(k, f32::total_cmp).1;
     let hi = *v.select_nth_unstable_by(n - 1 - k, f32::total_cmp).1;
-    if hi <= lo {
-        return;
-    }
+    (hi > lo).then_some((lo, hi))
+}
+
+fn stretch(f: &mut Field, lo: f32, hi: f32) {
     let scale = 1.0 / (hi - lo);
     for x in &mut f.data {
         *x = ((*x - lo) * scale).clamp(0.0, 1.0);

@@ -51,7 +51,10 @@ pub fn field_from_samples(
         Samples::U16(v) => v.iter().map(|&x| x as f32 / 65535.0).collect(),
         Samples::F32(v) => super::tiff_info::float_samples(v.iter().map(|&x| x as f64)),
     };
-    Ok(Field::new(width, height, data))
+    let mut field = Field::new(width, height, data);
+    // As a file's image is read ([`super::movie::widen_narrow`]).
+    super::movie::widen_narrow(&mut field);
+    Ok(field)
 }
 
 #[cfg(test)]
