@@ -61,7 +61,7 @@ fn export_labels_and_roi_set() {
     assert_eq!(archive.len(), max as usize, "one ROI per label");
 }
 
-/// A 16-bit image whose data fill 12 bits is read stretched to its own range
+/// A 16-bit image whose data fill 12 bits is read stretched to fill [0, 1]
 /// (`io::movie::widen_narrow`), and opens with a contrast window around it.
 #[test]
 fn a_twelve_bit_image_opens_with_its_own_contrast() {

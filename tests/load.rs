@@ -48,6 +48,23 @@ fn a_sixteen_bit_image_of_a_narrow_range_reads_as_its_full_range() {
 }
 
 #[test]
+fn a_few_bright_pixels_on_a_dim_ground_stay_brighter_than_it() {
+    // Three pixels of 25 on a ground of 5 (8-bit): under 0.1 % of the image, so a
+    // 99.9 % quantile would clamp them into the ground; the stretch goes by the extremes.
+    let img = image::GrayImage::from_fn(64, 64, |x, y| {
+        image::Luma([if y == 10 && (10..13).contains(&x) {
+            25
+        } else {
+            5
+        }])
+    });
+    let p = tmp("dim.png");
+    img.save(&p).unwrap();
+    let f = load_image(&p).unwrap();
+    assert_eq!((f.at(11, 10), f.at(40, 40)), (1.0, 0.0));
+}
+
+#[test]
 fn colour_png_and_jpeg_become_luminance() {
     let img = image::RgbImage::from_fn(8, 8, |x, _| {
         if x < 4 {

@@ -105,7 +105,7 @@ pub fn points_array<'py>(py: Python<'py>, pts: &[Point]) -> Bound<'py, PyArray2<
 
 /// `load(path, page=0)`: page `page` (from 0) of an image file as the engine reads it:
 /// a (height, width) float32 array of luminance in [0, 1] (an image of a narrow range
-/// stretched to its quantiles, so a label image's values are not its labels).
+/// stretched to fill it, so a label image's values are not its labels).
 #[pyfunction]
 #[pyo3(signature = (path, page = 0))]
 pub fn load(py: Python<'_>, path: PathBuf, page: usize) -> PyResult<Bound<'_, PyArray2<f32>>> {

@@ -80,7 +80,7 @@ class Tracks:
 
 def load(path: _Path, page: int = 0) -> npt.NDArray[np.float32]:
     """Page ``page`` (from 0) of an image file as the engine reads it, in [0, 1] (an
-    image of a narrow range stretched to its quantiles)."""
+    image of a narrow range stretched to fill it)."""
 
 def segment_array(
     image: npt.NDArray[Any], argv: list[str], name: str, teach: Optional[Union[Classifier, npt.NDArray[np.uint8]]] = None

@@ -255,17 +255,26 @@ pub fn normalise(f: &mut Field) {
     }
 }
 
-/// A still image whose 0.1 % and 99.9 % quantiles lie closer than this (intensities in
-/// [0, 1]) is [`normalise`]d: fewer grey levels than a full 8-bit image has in sixteen,
-/// as a 12-bit camera's image in a 16-bit file, or a 16-bit one using 97–276. The
+/// A still image whose darkest and brightest pixels lie closer than this (intensities in
+/// [0, 1]) is stretched to fill [0, 1]: fewer grey levels than a full 8-bit image has in
+/// eight, as a 12-bit camera's image in a 16-bit file, or a 16-bit one using 97–276. The
 /// intensity model's least contrast is absolute ([`crate::image::intensity::MIN_CONTRAST`]),
-/// and such an image read as it is was one object covering everything. Images of a
-/// wider range keep their values: a run on them is what it was.
-pub const NARROW_RANGE: f32 = 1.0 / 16.0;
+/// and such an image read as it is was one object covering everything, or none. Images
+/// of a wider range keep their values: a run on them is what it was.
+pub const NARROW_RANGE: f32 = 1.0 / 8.0;
 
-/// `f` [`normalise`]d when its range is narrower than [`NARROW_RANGE`].
+/// `f` stretched from its darkest to its brightest pixel when they lie closer than
+/// [`NARROW_RANGE`]. By the extremes, not by quantiles as a movie's frames: a few small
+/// bright objects on a dim ground (under 0.1 % of the pixels) must stay brighter than
+/// the ground, not be clamped into it.
 pub fn widen_narrow(f: &mut Field) {
-    if let Some((lo, hi)) = quantile_range(f).filter(|&(lo, hi)| hi - lo < NARROW_RANGE) {
+    let (lo, hi) = f
+        .data
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
+    if hi > lo && hi - lo < NARROW_RANGE {
         stretch(f, lo, hi);
     }
 }
