@@ -123,12 +123,17 @@ fn pixel_size(dec: &mut Decoder<Cursor<&[u8]>>) -> Option<PixelSize> {
 pub fn first_page_samples(path: &std::path::Path) -> Option<usize> {
     let file = std::fs::File::open(path).ok()?;
     let mut dec = Decoder::new(std::io::BufReader::new(file)).ok()?;
-    Some(match dec.colortype().ok()? {
-        ColorType::Gray(_) => 1,
-        ColorType::RGB(_) => 3,
-        ColorType::RGBA(_) => 4,
-        _ => return None,
-    })
+    samples_per_pixel(dec.colortype().ok()?)
+}
+
+/// Samples per pixel of the pixel kinds read here: grey, RGB and RGBA.
+fn samples_per_pixel(colour: ColorType) -> Option<usize> {
+    match colour {
+        ColorType::Gray(_) => Some(1),
+        ColorType::RGB(_) => Some(3),
+        ColorType::RGBA(_) => Some(4),
+        _ => None,
+    }
 }
 
 /// Decodes page `page` (0-based) of a TIFF as luminance in [0, 1].
@@ -159,17 +164,12 @@ pub(crate) fn decode_current<R: std::io::Read + std::io::Seek>(
     let (w, h) = dec.dimensions().map_err(|e| err(e.to_string()))?;
     super::load::check_size(name, w, h)?;
     let colour = dec.colortype().map_err(|e| err(e.to_string()))?;
-    let channels = match colour {
-        ColorType::Gray(_) => 1,
-        ColorType::RGB(_) => 3,
-        ColorType::RGBA(_) => 4,
-        other => {
-            return Err(err(format!(
-                "page {}: {other:?} pixels are not supported",
-                page + 1
-            )))
-        }
-    };
+    let channels = samples_per_pixel(colour).ok_or_else(|| {
+        err(format!(
+            "page {}: {colour:?} pixels are not supported",
+            page + 1
+        ))
+    })?;
     // Planes stored one after the other (PlanarConfiguration 2, as tifffile writes a
     // (3, H, W) array): `read_image` would return the first plane only.
     let planar = dec
