@@ -19,7 +19,7 @@ use crate::evolution::{find_seeds, Edit, EvolveError, Evolver, Field, Params, Po
 use crate::image::Stored;
 use crate::io::{load_image_page, ImageInfo, LoadError, PixelSize};
 use crate::learn::guide::{self, Guide};
-use crate::learn::{Taught, Teach, TeachError, BOUNDARY};
+use crate::learn::{Taught, Teach, TeachError};
 use std::borrow::Cow;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -232,10 +232,7 @@ impl Job {
         }
         let (ev, kept) = match (&guide, image) {
             (Some(g), image) => {
-                let mut ev = Evolver::new(&g.field, &shapes, g.params.clone())?;
-                // Rods merged end to end: cut where the boundary class crosses them.
-                let p = &g.probabilities;
-                ev.cut_when_finished(Arc::new(Field::new(p.width, p.height, p.of(BOUNDARY))));
+                let ev = g.evolver(Arc::new(image.as_ref().clone()), &shapes, g.params.mode)?;
                 // The run reads the probabilities: the image is kept as it is.
                 let kept = match image {
                     Cow::Owned(i) => Some(Stored::new(i)),

@@ -18,6 +18,8 @@ one where two overlap), the same shapes that make the image; tracks are the runs
 in which a cell has pixels, parents the mother's track when it ends the frame before.
 
 usage: synth_movie.py FAMILY OUT_DIR [--seed N] [--frames T] [--size PX]
+       [--photons P] [--blur S] [--line L] [--widths MIN MAX]   (bacteria_phase renderings:
+       noisier, blurrier, no line between cells, thinner rods)
 """
 from __future__ import annotations
 
@@ -29,6 +31,12 @@ import numpy as np
 import tifffile
 from scipy import ndimage as ndi
 
+
+# bacteria_phase rendering (--photons, --blur, --line, --widths): how hard a movie is.
+PHOTONS = 110.0
+BLUR = 1.1
+LINE = 0.32
+WIDTHS = (8.0, 10.0)
 
 # ------------------------------------------------------------------------ shapes
 def capsule_sd(xx, yy, c, ang, length, width, pinch):
@@ -172,7 +180,7 @@ def bacteria_phase(seed, frames, size):
     for k in range(3):
         lb = rng.uniform(17, 21)
         cells.append(dict(id=nid, pos=np.array([w / 2, h / 2]) + rng.uniform(-30, 30, 2),
-                          ang=rng.uniform(0, np.pi), wid=rng.uniform(8, 10), len=lb * rng.uniform(1.0, 1.9),
+                          ang=rng.uniform(0, np.pi), wid=rng.uniform(*WIDTHS), len=lb * rng.uniform(1.0, 1.9),
                           ldiv=2 * lb * rng.uniform(0.94, 1.06), rate=np.log(2) / rng.uniform(11, 14),
                           parent=0, born=0))
         nid += 1
@@ -193,7 +201,7 @@ def bacteria_phase(seed, frames, size):
                         for sgn in (-1, 1):
                             lb = c["len"] / 2
                             kids.append(dict(id=nid, pos=c["pos"] + sgn * d * c["len"] / 4, ang=c["ang"] + rng.normal(0, 0.03),
-                                             wid=float(np.clip(c["wid"] + rng.normal(0, 0.2), 8, 10)), len=lb,
+                                             wid=float(np.clip(c["wid"] + rng.normal(0, 0.2), *WIDTHS)), len=lb,
                                              ldiv=2 * lb * rng.uniform(0.94, 1.06), rate=np.log(2) / rng.uniform(11, 14),
                                              parent=c["id"], born=t))
                             nid += 1
@@ -245,16 +253,16 @@ def bacteria_phase(seed, frames, size):
             for y, x in zip(ys, xs):
                 ca, cb = by[a[y, x]], by[b[y, x]]
                 if ca["parent"] and ca["parent"] == cb["parent"]:
-                    s = 0.32 * np.clip((t - ca["born"]) / 8.0, 0, 1) ** 1.5
+                    s = LINE * np.clip((t - ca["born"]) / 8.0, 0, 1) ** 1.5
                 else:
-                    s = 0.32
+                    s = LINE
                 line[y, x] = max(line[y, x], s)
         union = np.clip(cov, 0, 1)
         halo = 0.9 * ndi.gaussian_filter(union, 4.0) * (1 - union) + 0.25 * ndi.gaussian_filter(union, 12.0)
         tex = 1.0 + 0.04 * smooth_noise(rng, h, w, 1.5)
         img = bg_tex * (1.0 - dark * tex) + halo + line
-        img = ndi.gaussian_filter(img * illum, 1.1)
-        movie.append(to_counts(rng, img, photons=110, read=2.0, offset=95))
+        img = ndi.gaussian_filter(img * illum, BLUR)
+        movie.append(to_counts(rng, img, photons=PHOTONS, read=2.0, offset=95))
     return movie, labs, events, dict(object="dark", modality="phase-contrast")
 
 
@@ -466,8 +474,17 @@ def main():
     ap.add_argument("--size", type=int, default=None)
     ap.add_argument("--gap", type=float, default=GAP,
                     help="nuclei_fluo: px between sister nuclei in their first frame (0: touching)")
+    ap.add_argument("--photons", type=float, default=PHOTONS,
+                    help="bacteria_phase: photons per unit of brightness (fewer: noisier)")
+    ap.add_argument("--blur", type=float, default=BLUR, help="bacteria_phase: optics' Gaussian sigma, px")
+    ap.add_argument("--line", type=float, default=LINE,
+                    help="bacteria_phase: brightness of the line where two cells meet (0: none)")
+    ap.add_argument("--widths", type=float, nargs=2, default=WIDTHS, metavar=("MIN", "MAX"),
+                    help="bacteria_phase: range of rod widths, px")
     a = ap.parse_args()
-    globals()["GAP"] = a.gap
+    if a.photons <= 0 or a.blur < 0 or a.line < 0 or not 2 <= a.widths[0] <= a.widths[1]:
+        ap.error("need --photons > 0, --blur >= 0, --line >= 0 and --widths MIN MAX with 2 <= MIN <= MAX")
+    globals().update(GAP=a.gap, PHOTONS=a.photons, BLUR=a.blur, LINE=a.line, WIDTHS=tuple(a.widths))
     frames = a.frames or (50 if a.family == "bacteria_phase" else 60)
     size = a.size or (256 if a.family == "bacteria_phase" else 420)
     if frames < 2 or size < 64:

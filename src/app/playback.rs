@@ -45,26 +45,28 @@ impl TopoApp {
             self.status.error = Some(AppError::NoImage);
             return false;
         };
-        // A taught run reads the probability map, and starts from the shapes, as a
-        // taught job does.
-        let (image, params, shapes) = match self.guide_for_run() {
-            Some(g) => {
-                let shapes = crate::learn::guide::taught_shapes(&self.doc.shapes, &g);
-                (std::sync::Arc::new(g.field), g.params, shapes)
-            }
-            None => (image, self.doc.params().clone(), self.doc.shapes.clone()),
+        // A taught run is made as a taught job makes it (the guide's evolver), from the
+        // shapes a taught job starts from.
+        let guide = self.guide_for_run();
+        let shapes = match &guide {
+            Some(g) => crate::learn::guide::taught_shapes(&self.doc.shapes, g),
+            None => self.doc.shapes.clone(),
         };
+        let params = self.doc.params().clone();
         let compare = self.doc.settings.compare;
         let large = image.width * image.height > PREPARE_IN_BACKGROUND;
         let build = move || {
-            let second = compare.map(|mode| {
-                let p = Params {
-                    mode,
-                    ..params.clone()
-                };
-                Evolver::new(&image, &shapes, p)
-            });
-            (Evolver::new(&image, &shapes, params), second)
+            let start = |mode| match &guide {
+                Some(g) => g.evolver(image.clone(), &shapes, mode),
+                None => {
+                    let p = Params {
+                        mode,
+                        ..params.clone()
+                    };
+                    Evolver::new(&image, &shapes, p)
+                }
+            };
+            (start(params.mode), compare.map(start))
         };
         if large {
             // The pyramid and local statistics of a large image take seconds: the

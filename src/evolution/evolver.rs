@@ -37,6 +37,14 @@ use std::sync::Arc;
 /// one more settling; a second round found nothing more (`docs/decisions.md`).
 const REOPEN_ROUNDS: usize = 1;
 
+/// Frames the edge stage of a taught run takes ([`Evolver::edges_when_finished`]): the
+/// band it reads is at most [`crate::learn::edges::BAND`] pixels each side of the
+/// outlines, crossed in a few frames at the default step; waiting for the vertices
+/// that chatter on noisy intensities to calm took 70 frames on the public colony for
+/// the same scores (docs/decisions.md, 2026-12-05). The run is converged after it if it
+/// was before it.
+pub const EDGE_FRAMES: usize = 10;
+
 /// Runs the evolution.
 #[derive(Clone)]
 pub struct Evolver {
@@ -58,6 +66,13 @@ pub struct Evolver {
     /// A taught run's P(boundary), to cut its regions at the septa it shows when the run
     /// finishes ([`Evolver::cut_when_finished`]); taken when the cut is made.
     septa: Option<Arc<Field>>,
+    /// A taught run's image and its objects' polarity, to settle the objects' edges on
+    /// it once the run has finished on the probabilities
+    /// ([`Evolver::edges_when_finished`]); taken when that stage starts.
+    edges: Option<(Arc<Field>, crate::image::Polarity)>,
+    /// The frame by which the edge stage ends ([`EDGE_FRAMES`] after it starts), and
+    /// whether the run had converged before it.
+    edges_until: Option<(usize, bool)>,
 }
 
 impl Evolver {
@@ -140,6 +155,8 @@ impl Evolver {
             reopened: 0,
             free_coarse: false,
             septa: None,
+            edges: None,
+            edges_until: None,
         })
     }
 
@@ -281,9 +298,18 @@ impl Evolver {
             }
         }
         self.log_events(&frame.events);
+        if let Some((until, converged)) = self.edges_until {
+            if self.frame >= until && !self.is_finished() {
+                self.schedule.end(converged);
+            }
+        }
         if self.is_finished() {
+            self.edges_until = None;
             if let Some(line) = self.septa.take() {
                 self.cut_at_necks(&line);
+            }
+            if let Some((image, polarity)) = self.edges.take() {
+                self.settle_edges(&image, polarity);
             }
         }
         frame.level = self.schedule.level;
@@ -453,6 +479,42 @@ impl Evolver {
     /// the same point, before any edit made after the end.
     pub fn cut_when_finished(&mut self, line: Arc<Field>) {
         self.septa = Some(line);
+    }
+
+    /// Once the run has finished (and made its cuts), the objects' edges are settled on
+    /// `image` ([`crate::learn::edges`]): the run goes on, on the finest level, over the
+    /// field it read with each object's outline band read from `image` (objects of
+    /// `polarity`). In the frame the run finishes, as the cut: the app and the CLI settle
+    /// alike. Not in the implicit engine, nor in a run with no frames left.
+    pub fn edges_when_finished(&mut self, image: Arc<Field>, polarity: crate::image::Polarity) {
+        self.edges = Some((image, polarity));
+    }
+
+    /// [`Evolver::edges_when_finished`]'s stage: the field swapped, the schedule resumed.
+    /// Returns how many objects' edges the image set.
+    fn settle_edges(&mut self, image: &Field, polarity: crate::image::Polarity) -> usize {
+        if self.implicit().is_some() || self.frame >= self.params.max_frames {
+            return 0;
+        }
+        let global = self.image.global();
+        let (field, settled) = crate::learn::edges::edge_field(
+            self.image.fine(),
+            image,
+            self.engine.contours(),
+            polarity,
+            global.object,
+            global.background,
+        );
+        if settled == 0 {
+            return 0;
+        }
+        self.image = Arc::new(self.image.over(&field));
+        if let Some(slot) = self.engine.image_mut() {
+            *slot = self.image.clone();
+        }
+        self.edges_until = Some((self.frame + EDGE_FRAMES, self.schedule.converged));
+        self.schedule.resume();
+        settled
     }
 
     /// Cuts each outer region with no hole where `line` (a taught run's P(boundary))

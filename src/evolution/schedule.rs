@@ -58,6 +58,13 @@ impl Schedule {
         self.stopped = false;
     }
 
+    /// Ends the run here, converged or stopped as `converged` says (a stage of fixed
+    /// length after the run had settled: [`crate::evolution::Evolver::edges_when_finished`]).
+    pub fn end(&mut self, converged: bool) {
+        self.converged = converged;
+        self.stopped = !converged;
+    }
+
     /// Judges the frame that just left `set` with `share` of its vertices active; returns
     /// the finer level to move to, if this level is done.
     pub fn judge(&mut self, set: &ContourSet, share: f64, converged_share: f64) -> Option<usize> {

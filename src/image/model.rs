@@ -200,6 +200,16 @@ impl ImageModel {
         self.decision.truncate(1);
         self.decision.shrink_to_fit();
     }
+    /// The same model over another image of the same size, seen as this one's was: its
+    /// pyramid and local levels are made anew, its two-class model is this one's, so
+    /// the decision level stays where it was (a taught run's last stage,
+    /// [`crate::learn::edges`]).
+    pub fn over(&self, image: &Field) -> Self {
+        let mut model = Self::finish(Self::pyramid(image, &self.params, &[]), &self.params, &[]);
+        model.global = self.global;
+        model
+    }
+
     /// The image the forces see, at full resolution (pyramid level 0).
     pub fn fine(&self) -> &Field {
         &self.pyramid.levels[0].image

@@ -20,10 +20,11 @@
 
 use super::Probabilities;
 use super::{BACKGROUND, BOUNDARY, OBJECT};
-use crate::evolution::{Mode, Params, Polarity};
+use crate::evolution::{EvolveError, Evolver, Mode, Params, Polarity};
 use crate::geometry::Point;
 use crate::image::{Field, Modality};
 use crate::shape::Shape;
+use std::sync::Arc;
 
 /// A run guided by a classifier: the probabilities, the image the engine reads and the
 /// parameters it reads it with.
@@ -36,11 +37,15 @@ pub struct Guide {
     /// `params` with objects bright, the generic image kind and no local levels: the
     /// decision level is probability ½.
     pub params: Params,
+    /// Whether the objects are dark or bright in the image itself (the user's
+    /// polarity): what the run's edge stage reads ([`crate::learn::edges`]).
+    pub polarity: Polarity,
 }
 
 impl Guide {
     /// The guide of known probabilities.
     pub fn new(probabilities: Probabilities, params: &Params) -> Self {
+        let params_polarity = params.polarity;
         let field = probability_field(&probabilities, params.mode != Mode::Adaptive);
         let params = Params {
             polarity: Polarity::Bright,
@@ -53,7 +58,30 @@ impl Guide {
             probabilities,
             field,
             params,
+            polarity: params_polarity,
         }
+    }
+
+    /// The run this guide drives from `shapes` on `image` (the image the probabilities
+    /// are of), in `mode`: it reads [`Guide::field`], cuts its objects at the septa
+    /// P(boundary) shows when it finishes ([`Evolver::cut_when_finished`]), then settles
+    /// their edges on the image ([`Evolver::edges_when_finished`]). The one way a taught
+    /// run is made: a job, the app and its side-by-side run alike.
+    pub fn evolver(
+        &self,
+        image: Arc<Field>,
+        shapes: &[Shape],
+        mode: Mode,
+    ) -> Result<Evolver, EvolveError> {
+        let params = Params {
+            mode,
+            ..self.params.clone()
+        };
+        let mut ev = Evolver::new(&self.field, shapes, params)?;
+        let p = &self.probabilities;
+        ev.cut_when_finished(Arc::new(Field::new(p.width, p.height, p.of(BOUNDARY))));
+        ev.edges_when_finished(image, self.polarity);
+        Ok(ev)
     }
 }
 
