@@ -1,4 +1,4 @@
-//! A taught run's edge stage ([`topocontour::learn::edges`]): strokes leave the edge
+//! A taught run's edge stage ([`topocontour::image::edges`]): strokes leave the edge
 //! unlabelled (object strokes in the middles, background strokes a few pixels off), and
 //! the run ends with each object's outline half-way between its inside and its
 //! surroundings, as an annotator traces it; objects inside a colony, with no free
@@ -8,9 +8,9 @@ use topocontour::contours::measure::regions;
 use topocontour::contours::ContourSet;
 use topocontour::evolution::{Params, Polarity};
 use topocontour::geometry::{Aabb, Point};
+use topocontour::image::edges::edge_field;
 use topocontour::image::Field;
 use topocontour::job::Job;
-use topocontour::learn::edges::edge_field;
 use topocontour::learn::{Strokes, Teach};
 
 const W: usize = 128;

@@ -38,7 +38,7 @@ use std::sync::Arc;
 const REOPEN_ROUNDS: usize = 1;
 
 /// Frames the edge stage of a taught run takes ([`Evolver::edges_when_finished`]): the
-/// band it reads is at most [`crate::learn::edges::BAND`] pixels each side of the
+/// band it reads is at most [`crate::image::edges::BAND`] pixels each side of the
 /// outlines, crossed in a few frames at the default step; waiting for the vertices
 /// that chatter on noisy intensities to calm took 70 frames on the public colony for
 /// the same scores (docs/decisions.md, 2026-12-05). The run is converged after it if it
@@ -482,7 +482,7 @@ impl Evolver {
     }
 
     /// Once the run has finished (and made its cuts), the objects' edges are settled on
-    /// `image` ([`crate::learn::edges`]): the run goes on, on the finest level, over the
+    /// `image` ([`crate::image::edges`]): the run goes on, on the finest level, over the
     /// field it read with each object's outline band read from `image` (objects of
     /// `polarity`). In the frame the run finishes, as the cut: the app and the CLI settle
     /// alike. Not in the implicit engine, nor in a run with no frames left.
@@ -497,7 +497,7 @@ impl Evolver {
             return 0;
         }
         let global = self.image.global();
-        let (field, settled) = crate::learn::edges::edge_field(
+        let (field, settled) = crate::image::edges::edge_field(
             self.image.fine(),
             image,
             self.engine.contours(),

@@ -18,6 +18,7 @@
 
 pub mod declump;
 pub mod distance;
+pub mod edges;
 pub mod field;
 pub mod filters;
 pub mod halo;

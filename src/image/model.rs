@@ -203,7 +203,7 @@ impl ImageModel {
     /// The same model over another image of the same size, seen as this one's was: its
     /// pyramid and local levels are made anew, its two-class model is this one's, so
     /// the decision level stays where it was (a taught run's last stage,
-    /// [`crate::learn::edges`]).
+    /// [`crate::image::edges`]).
     pub fn over(&self, image: &Field) -> Self {
         let mut model = Self::finish(Self::pyramid(image, &self.params, &[]), &self.params, &[]);
         model.global = self.global;

@@ -38,7 +38,7 @@ pub struct Guide {
     /// decision level is probability ½.
     pub params: Params,
     /// Whether the objects are dark or bright in the image itself (the user's
-    /// polarity): what the run's edge stage reads ([`crate::learn::edges`]).
+    /// polarity): what the run's edge stage reads ([`crate::image::edges`]).
     pub polarity: Polarity,
 }
 

@@ -7,7 +7,6 @@
 //! intensity (see [`guide`]): the boundary class is what keeps
 //! touching cells with no intensity step between them apart.
 
-pub mod edges;
 pub mod features;
 pub mod filters;
 pub mod forest;

@@ -23,11 +23,11 @@
 //! Chosen on the six public real cases with two simulated stroke sets and checked on two
 //! more (docs/decisions.md, 2026-12-05: mean SEG 0.7679 → 0.7844 over the four).
 
+use super::distance::distance_transform;
+use super::{Field, Polarity};
+use crate::contours::measure::regions;
 use crate::contours::ContourSet;
-use crate::evolution::Polarity;
 use crate::geometry::fill_even_odd;
-use crate::image::distance::distance_transform;
-use crate::image::Field;
 
 /// Widest band (pixels) each side of an outline where the image sets the edge; half the
 /// object's inscribed radius when that is less (a thin rod's band must not reach its
@@ -65,7 +65,7 @@ pub fn edge_field(
 ) -> (Field, usize) {
     let (w, h) = (field.width, field.height);
     let smooth = image.blur5();
-    let regions = crate::evolution::regions(set);
+    let regions = regions(set);
     let mut labels = vec![0u32; w * h];
     for (k, r) in regions.iter().enumerate() {
         let rings: Vec<_> = std::iter::once(r.id)
