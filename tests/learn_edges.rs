@@ -4,9 +4,12 @@
 //! surroundings, as an annotator traces it; objects inside a colony, with no free
 //! surroundings, are left where the classifier put them.
 
+mod common;
+
+use common::workdir;
 use topocontour::contours::measure::regions;
 use topocontour::contours::ContourSet;
-use topocontour::evolution::{Params, Polarity};
+use topocontour::evolution::{Params, Polarity, Shape};
 use topocontour::geometry::{Aabb, Point};
 use topocontour::image::edges::edge_field;
 use topocontour::image::Field;
@@ -61,8 +64,7 @@ fn strokes() -> Strokes {
 
 #[test]
 fn a_taught_run_ends_on_the_half_way_edge() {
-    let dir = std::env::temp_dir().join(format!("topocontour-edges-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = workdir("learn", "edges");
     let path = dir.join("disks.png");
     let img = disks();
     let bytes: Vec<u8> = img
@@ -106,7 +108,7 @@ fn a_taught_run_ends_on_the_half_way_edge() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// A set of the square outlines `boxes` (x0, y0, x1, y1), each counter-clockwise.
+/// A set of the square outlines `boxes` (x0, y0, x1, y1).
 fn boxes(b: &[(f64, f64, f64, f64)]) -> ContourSet {
     let domain = Aabb {
         min: Point::new(0.0, 0.0),
@@ -114,21 +116,11 @@ fn boxes(b: &[(f64, f64, f64, f64)]) -> ContourSet {
     };
     let mut set = ContourSet::new(domain, 2.0);
     for &(x0, y0, x1, y1) in b {
-        let mut ring = Vec::new();
-        let n = 12;
-        for k in 0..n {
-            ring.push(Point::new(x0 + (x1 - x0) * k as f64 / n as f64, y0));
-        }
-        for k in 0..n {
-            ring.push(Point::new(x1, y0 + (y1 - y0) * k as f64 / n as f64));
-        }
-        for k in 0..n {
-            ring.push(Point::new(x1 - (x1 - x0) * k as f64 / n as f64, y1));
-        }
-        for k in 0..n {
-            ring.push(Point::new(x0, y1 - (y1 - y0) * k as f64 / n as f64));
-        }
-        set.add_ring(&ring).unwrap();
+        let square = Shape::Rect {
+            min: Point::new(x0, y0),
+            max: Point::new(x1, y1),
+        };
+        set.add_ring(&square.ring(1.5)).unwrap();
     }
     set
 }

@@ -27,7 +27,7 @@ use super::distance::distance_transform;
 use super::{Field, Polarity};
 use crate::contours::measure::regions;
 use crate::contours::ContourSet;
-use crate::geometry::fill_even_odd;
+use crate::geometry::{fill_even_odd, Point};
 
 /// Widest band (pixels) each side of an outline where the image sets the edge; half the
 /// object's inscribed radius when that is less (a thin rod's band must not reach its
@@ -65,14 +65,19 @@ pub fn edge_field(
 ) -> (Field, usize) {
     let (w, h) = (field.width, field.height);
     let smooth = image.blur5();
-    let regions = regions(set);
+    // Each region's rings, outer first, read once.
+    let rings: Vec<Vec<Vec<Point>>> = regions(set)
+        .iter()
+        .map(|r| {
+            std::iter::once(r.id)
+                .chain(r.holes.iter().copied())
+                .map(|id| set.ring_points(id))
+                .collect()
+        })
+        .collect();
     let mut labels = vec![0u32; w * h];
-    for (k, r) in regions.iter().enumerate() {
-        let rings: Vec<_> = std::iter::once(r.id)
-            .chain(r.holes.iter().copied())
-            .map(|id| set.ring_points(id))
-            .collect();
-        fill_even_odd(&rings, w, h, |i| labels[i] = k as u32 + 1);
+    for (k, r) in rings.iter().enumerate() {
+        fill_even_odd(r, w, h, |i| labels[i] = k as u32 + 1);
     }
     let level = 0.5 * (object + background);
     let half = 0.5 * (object - background);
@@ -82,9 +87,9 @@ pub fn edge_field(
     };
     let mut out = field.data.clone();
     let mut done = 0;
-    for (k, r) in regions.iter().enumerate() {
+    for (k, r) in rings.iter().enumerate() {
         let own = k as u32 + 1;
-        let bb = set.ring_points(r.id).iter().fold(
+        let bb = r[0].iter().fold(
             (f64::MAX, f64::MAX, f64::MIN, f64::MIN),
             |(x0, y0, x1, y1), p| (x0.min(p.x), y0.min(p.y), x1.max(p.x), y1.max(p.y)),
         );

@@ -45,7 +45,8 @@ pub struct Guide {
 impl Guide {
     /// The guide of known probabilities.
     pub fn new(probabilities: Probabilities, params: &Params) -> Self {
-        let params_polarity = params.polarity;
+        // The user's polarity, before the run's own (objects bright) replaces it.
+        let polarity = params.polarity;
         let field = probability_field(&probabilities, params.mode != Mode::Adaptive);
         let params = Params {
             polarity: Polarity::Bright,
@@ -58,7 +59,7 @@ impl Guide {
             probabilities,
             field,
             params,
-            polarity: params_polarity,
+            polarity,
         }
     }
 
