@@ -160,6 +160,11 @@ impl Cells {
                 .is_some_and(|&(d, _)| d > 0.0 && self.dist.data[i] >= CORE * d)
     }
 
+    /// Whether cell `l` has a core (some pixel not on its border).
+    fn has_core(&self, l: u32) -> bool {
+        self.deepest.get(&l).is_some_and(|&(d, _)| d > 0.0)
+    }
+
     /// The marker watershed of the group (see the module doc).
     fn basins(&self) -> Vec<u32> {
         let mut basin = vec![0u32; self.w * self.h];
@@ -168,6 +173,10 @@ impl Cells {
             if self.in_core(i) {
                 basin[i] = l;
                 heap.push((ordered_bits(self.score.data[i]), i));
+            } else if l != 0 && !self.has_core(l) {
+                // A cell too thin for a core keeps its ring ([`Cells::ring`]), so it
+                // keeps its pixels too: flooded by a neighbour, it would lie under it.
+                basin[i] = l;
             }
         }
         while let Some((_, i)) = heap.pop() {
@@ -442,6 +451,23 @@ mod tests {
         // A cell touching none keeps its ring.
         let one: Vec<u32> = divided(38).iter().map(|&l| l.min(1)).collect();
         assert!(repartition(&one, &block(0.5)).is_empty());
+    }
+
+    #[test]
+    fn a_cell_too_thin_for_a_core_keeps_its_pixels() {
+        // Column 38 is a cell one pixel wide between two others: it has no core, keeps
+        // its ring, and its pixels are not flooded by its neighbours.
+        let labels: Vec<u32> = divided(38)
+            .iter()
+            .enumerate()
+            .map(|(i, &l)| if l != 0 && i % 80 == 38 { 3 } else { l })
+            .collect();
+        let new = repartition(&labels, &block(1.0));
+        assert_eq!(new.iter().map(|r| r.0).collect::<Vec<_>>(), [1, 2]);
+        let right_of_one = right_end(&new[0].1);
+        assert!(right_of_one < 38.0, "{right_of_one}");
+        let left_of_two = new[1].1.iter().map(|p| p.x).fold(f64::MAX, f64::min);
+        assert!(left_of_two > 38.0, "{left_of_two}");
     }
 
     #[test]
