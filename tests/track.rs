@@ -177,6 +177,45 @@ fn sisters_with_a_wide_contact_are_cut_at_their_line_and_a_waist_is_not() {
     assert_eq!(track(&sisters(4.0, None)), "1 0 5 0\n");
 }
 
+/// A wide rod (14 px) growing (frames 0–2), then from frame 3 two stubby sisters (each
+/// 14 px wide and `length` long at birth, growing a pixel a frame) whose caps meet end to
+/// end, with no line between them; blurred.
+fn stubby_sisters(length: f64) -> Vec<Field> {
+    let r = 7.0;
+    let mother = |half: f64| {
+        (
+            Point::new(48.0 - half, 32.0),
+            Point::new(48.0 + half, 32.0),
+            r,
+        )
+    };
+    let mut frames: Vec<Field> = [8.0, 9.0, 10.0]
+        .map(|h| blurred(frame(&[mother(h)])))
+        .into();
+    let axis = length - 2.0 * r;
+    for grow in [0.0, 1.0, 2.0] {
+        let l = (
+            Point::new(48.0 - r - axis - grow, 32.0),
+            Point::new(48.0 - r, 32.0),
+            r,
+        );
+        let rr = (
+            Point::new(48.0 + r, 32.0),
+            Point::new(48.0 + r + axis + grow, 32.0),
+            r,
+        );
+        frames.push(blurred(frame(&[l, rr])));
+    }
+    frames
+}
+
+#[test]
+fn stubby_sisters_of_a_wide_rod_divide_in_their_first_frame() {
+    // Daughters of a wide rod are stubby (aspect under 1.5, as round as a condensing
+    // nucleus by that measure alone); of one size, they are rods: cut where their caps meet.
+    assert_eq!(track(&stubby_sisters(21.0)), "1 0 2 0\n2 3 5 1\n3 3 5 1\n");
+}
+
 /// A round nucleus (frames 0–2), then two sister nuclei along x whose outlines are `gap`
 /// px apart in frame 3 and part by 2 px a frame on each side; blurred σ ≈ 1.2 (three
 /// passes), so the first frame's gap is a dip, not background.

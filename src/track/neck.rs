@@ -17,6 +17,10 @@
 //! corners (rods side by side that turned apart). A straight or bent single rod, a
 //! kidney and an ellipse have no such neck and no line along it.
 //!
+//! A lobe is a rod when it is elongated ([`MIN_LOBE_ASPECT`]), or stubby
+//! ([`MIN_STUB_ASPECT`]) with its sister of one size: a wide rod's daughters are born
+//! stubby, and a cap cut off a long rod's end is small beside the rest.
+//!
 //! Round lobes (a dividing nucleus) are cut only where the neck is much narrower than
 //! the lobes ([`ROUND_NARROW`]), the image along it is half-way to the background or more
 //! ([`ROUND_GAP`]) and the lobes are of one size ([`ROUND_SHARE`]): sister nuclei start a
@@ -64,6 +68,13 @@ pub const NOTCH_WIDENS: f64 = 0.475;
 /// rod. A nucleus pinches into round lobes, and the contour splits it by itself when
 /// the daughters part; cutting it at a neck would be early.
 pub const MIN_LOBE_ASPECT: f64 = 1.5;
+
+/// A lobe at least this elongated but under [`MIN_LOBE_ASPECT`] is a stubby rod when
+/// the two lobes are of one size ([`ROUND_SHARE`]): the daughters of a wide rod (11–14
+/// px wide at birth, aspect 1.3–1.5) are stubby, while a cap cut off a long rod's end is
+/// small beside the rest. Under the round rule, their birth waited for the sisters to
+/// slide apart (2–3 frames late on synthetic wide rods): docs/decisions.md, 2026-12-05.
+pub const MIN_STUB_ASPECT: f64 = 1.3;
 
 /// Round lobes (either below [`MIN_LOBE_ASPECT`]): the widest neck cut, as a share of the
 /// thinner lobe's width. Sister nuclei in their first frame are a thin blurred gap apart
@@ -310,10 +321,11 @@ pub fn neck_cut_along(
         return ok.then_some((a, b));
     }
     let line = septum(ring, &a, &b, ring[i], ring[j], image);
-    if la.0 < MIN_LOBE_ASPECT || lb.0 < MIN_LOBE_ASPECT {
+    let (aspect, share) = (la.0.min(lb.0), aa.min(ab) / aa.max(ab));
+    let rods = aspect >= MIN_LOBE_ASPECT || (aspect >= MIN_STUB_ASPECT && share >= ROUND_SHARE);
+    if !rods {
         // Round lobes: sister nuclei a thin gap apart that the contour still bridges.
-        let ok =
-            d < ROUND_NARROW * width && line >= ROUND_GAP && aa.min(ab) >= ROUND_SHARE * aa.max(ab);
+        let ok = d < ROUND_NARROW * width && line >= ROUND_GAP && share >= ROUND_SHARE;
         return ok.then_some((a, b));
     }
     let turn = notch_turn(ring, i, width) + notch_turn(ring, j, width);
