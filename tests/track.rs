@@ -216,6 +216,28 @@ fn stubby_sisters_of_a_wide_rod_divide_in_their_first_frame() {
     assert_eq!(track(&stubby_sisters(21.0)), "1 0 2 0\n2 3 5 1\n3 3 5 1\n");
 }
 
+#[test]
+fn a_colony_on_a_drifting_stage_keeps_its_tracks() {
+    // Four rods side by side 3 px apart; the whole field moves (7, 2) px a frame, so
+    // each carried contour would land across its neighbour: it is moved with the field.
+    let frames: Vec<Field> = (0..5)
+        .map(|t| {
+            let (dx, dy) = (7.0 * t as f64, 2.0 * t as f64);
+            let rods: Vec<Capsule> = [12.0, 25.0, 38.0, 51.0]
+                .map(|x| {
+                    (
+                        Point::new(x + dx, 14.0 + dy),
+                        Point::new(x + dx, 38.0 + dy),
+                        5.0,
+                    )
+                })
+                .into();
+            blurred(frame(&rods))
+        })
+        .collect();
+    assert_eq!(track(&frames), "1 0 4 0\n2 0 4 0\n3 0 4 0\n4 0 4 0\n");
+}
+
 /// A round nucleus (frames 0–2), then two sister nuclei along x whose outlines are `gap`
 /// px apart in frame 3 and part by 2 px a frame on each side; blurred σ ≈ 1.2 (three
 /// passes), so the first frame's gap is a dip, not background.

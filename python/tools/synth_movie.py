@@ -20,6 +20,7 @@ in which a cell has pixels, parents the mother's track when it ends the frame be
 usage: synth_movie.py FAMILY OUT_DIR [--seed N] [--frames T] [--size PX]
        [--photons P] [--blur S] [--line L] [--widths MIN MAX]   (bacteria_phase renderings:
        noisier, blurrier, no line between cells, thinner rods)
+       [--drift S]   (either family: a drifting stage, the whole field's random walk of S px a frame)
 """
 from __future__ import annotations
 
@@ -37,6 +38,8 @@ PHOTONS = 110.0
 BLUR = 1.1
 LINE = 0.32
 WIDTHS = (8.0, 10.0)
+# Both families: a drifting stage (--drift), px a frame of the whole field's random walk.
+DRIFT = 0.0
 
 # ------------------------------------------------------------------------ shapes
 def capsule_sd(xx, yy, c, ang, length, width, pinch):
@@ -435,9 +438,31 @@ def tracks_from(labs, events):
     return sorted(rows), out
 
 
+def drifted(movie, labs, seed, sigma, reach=24):
+    """The movie and its labels with the whole field moved by a random walk of `sigma` px a
+    frame (kept within `reach` px), as a drifting stage moves it: what enters at an edge
+    repeats the edge, and cells carried out of the frame are cut by it."""
+    rng = np.random.default_rng(seed + 1_000_003)
+    off, out_m, out_l = np.zeros(2), [], []
+    for t, (img, lab) in enumerate(zip(movie, labs)):
+        if t:
+            off = np.clip(off + rng.normal(0, sigma, 2), -reach, reach)
+        dy, dx = (int(v) for v in np.round(off))
+        h, w = img.shape
+        ys = np.clip(np.arange(h) - dy, 0, h - 1)
+        xs = np.clip(np.arange(w) - dx, 0, w - 1)
+        out_m.append(img[np.ix_(ys, xs)])
+        inside = np.outer((np.arange(h) - dy >= 0) & (np.arange(h) - dy < h),
+                          (np.arange(w) - dx >= 0) & (np.arange(w) - dx < w))
+        out_l.append(np.where(inside, lab[np.ix_(ys, xs)], 0))
+    return out_m, out_l
+
+
 def write_case(out_dir, family, seed, frames, size):
     gen = {"bacteria_phase": bacteria_phase, "nuclei_fluo": nuclei_fluo}[family]
     movie, labs, events, kind = gen(seed, frames, size)
+    if DRIFT > 0:
+        movie, labs = drifted(movie, labs, seed, DRIFT)
     rows, masks = tracks_from(labs, events)
     os.makedirs(os.path.join(out_dir, "GT", "TRA"), exist_ok=True)
     os.makedirs(os.path.join(out_dir, "GT", "SEG"), exist_ok=True)
@@ -481,10 +506,12 @@ def main():
                     help="bacteria_phase: brightness of the line where two cells meet (0: none)")
     ap.add_argument("--widths", type=float, nargs=2, default=WIDTHS, metavar=("MIN", "MAX"),
                     help="bacteria_phase: range of rod widths, px")
+    ap.add_argument("--drift", type=float, default=DRIFT,
+                    help="both: the whole field moves by a random walk of this many px a frame (0: still)")
     a = ap.parse_args()
-    if a.photons <= 0 or a.blur < 0 or a.line < 0 or not 2 <= a.widths[0] <= a.widths[1]:
-        ap.error("need --photons > 0, --blur >= 0, --line >= 0 and --widths MIN MAX with 2 <= MIN <= MAX")
-    globals().update(GAP=a.gap, PHOTONS=a.photons, BLUR=a.blur, LINE=a.line, WIDTHS=tuple(a.widths))
+    if a.photons <= 0 or a.blur < 0 or a.line < 0 or a.drift < 0 or not 2 <= a.widths[0] <= a.widths[1]:
+        ap.error("need --photons > 0, --blur >= 0, --line >= 0, --drift >= 0 and --widths MIN MAX with 2 <= MIN <= MAX")
+    globals().update(GAP=a.gap, PHOTONS=a.photons, BLUR=a.blur, LINE=a.line, WIDTHS=tuple(a.widths), DRIFT=a.drift)
     frames = a.frames or (50 if a.family == "bacteria_phase" else 60)
     size = a.size or (256 if a.family == "bacteria_phase" else 420)
     if frames < 2 or size < 64:

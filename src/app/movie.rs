@@ -353,7 +353,14 @@ impl TopoApp {
                 Ok(f) => f,
                 Err(e) => return drop(tx.send(Message::Failed(e.to_string()))),
             };
-            for image in frames.skip(from) {
+            // The frame before `from` tells how far the field moves into it.
+            let mut frames = frames.skip(from.saturating_sub(1));
+            if from > 0 {
+                if let Some(Ok(before)) = frames.next() {
+                    tracker.set_previous(before);
+                }
+            }
+            for image in frames {
                 if stop.load(Ordering::SeqCst) {
                     break;
                 }

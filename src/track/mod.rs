@@ -45,6 +45,7 @@
 
 pub mod carry;
 pub mod contrast;
+pub mod drift;
 pub mod lineage;
 pub mod neck;
 pub mod partition;
@@ -160,6 +161,8 @@ pub struct Tracker {
     next_seeding: usize,
     /// Object pixels no cell covered after the last frame that placed seeds.
     residual: usize,
+    /// The last frame's image, to tell how far the field moved ([`drift`]).
+    previous: Option<Field>,
 }
 
 impl Tracker {
@@ -174,7 +177,15 @@ impl Tracker {
             frame: 0,
             next_seeding: 0,
             residual: 0,
+            previous: None,
         }
+    }
+
+    /// The image of the frame tracked last, when the tracker did not see it itself (a
+    /// tracker [`Tracker::resume`]d after a correction): the next frame then follows
+    /// the field's drift from it as a tracker that ran on would.
+    pub fn set_previous(&mut self, image: Field) {
+        self.previous = Some(image);
     }
 
     /// The tracks so far.
@@ -193,6 +204,12 @@ impl Tracker {
         let (w, h) = (image.width, image.height);
         if self.labels.len() != w * h {
             self.labels = vec![0; w * h];
+        }
+        if let Some(before) = self.previous.take() {
+            let s = drift::field_shift(&before, image, &self.labels);
+            if s != (0, 0) {
+                self.follow(s, w, h);
+            }
         }
         let mut shapes: Vec<Shape> = Vec::new();
         let mut origins: Vec<Origin> = Vec::new();
@@ -272,8 +289,35 @@ impl Tracker {
             .iter()
             .map(|o| (o.track, o.ring.clone()))
             .collect();
+        self.previous = Some(image.clone());
         self.frame += 1;
         Ok(frame)
+    }
+
+    /// Moves the last frame's cells (outlines and labels) by the field's shift `s`, the
+    /// outlines kept inside the `w`×`h` frame.
+    fn follow(&mut self, s: (i32, i32), w: usize, h: usize) {
+        let d = Point::new(s.0 as f64, s.1 as f64);
+        let (xmax, ymax) = (w as f64 - 0.5, h as f64 - 0.5);
+        // A cell carried out of the frame ends its track, as one that left it.
+        self.live.retain(|(_, ring)| {
+            let c = crate::geometry::area2_centroid(ring).1 + d;
+            (0.0..w as f64).contains(&c.x) && (0.0..h as f64).contains(&c.y)
+        });
+        for (_, ring) in &mut self.live {
+            for p in ring.iter_mut() {
+                let q = *p + d;
+                *p = Point::new(q.x.clamp(0.5, xmax), q.y.clamp(0.5, ymax));
+            }
+        }
+        let mut moved = vec![0u32; w * h];
+        for (i, &l) in self.labels.iter().enumerate() {
+            let (x, y) = ((i % w) as i32 + s.0, (i / w) as i32 + s.1);
+            if l != 0 && (0..w as i32).contains(&x) && (0..h as i32).contains(&y) {
+                moved[y as usize * w + x as usize] = l;
+            }
+        }
+        self.labels = moved;
     }
 
     /// A frame's evolution `evolved` from the cells before (`origins`), run again with

@@ -1,0 +1,195 @@
+//! How far the whole field moved between two frames (stage drift, a dish settling, the
+//! focus hunting): the carried contours are moved by it before the next frame starts
+//! from them.
+//!
+//! A frame starts from the contours of the frame before, shrunk a little, so a cell that
+//! moved under a pixel or two is still under its contour, and the pyramid carries a
+//! contour further where it is alone (seed 004 §2.2). When the whole field moves, every
+//! contour in a colony lands across its neighbours, and that the pyramid cannot undo:
+//! a random walk of 2 px a frame took a synthetic bacteria colony's TRA from 0.99 to
+//! 0.80–0.89 (docs/decisions.md, 2026-12-05). The papers track moving surfaces, not a
+//! moving camera; a user of a tracking tool expects drift to be followed, as TrackMate
+//! and the CTC methods do by registering frames first.
+//!
+//! The shift is the integer translation that best maps the last frame's cells onto the
+//! new frame: the mean squared difference over the cells' pixels (where the texture
+//! that tells the shift lies; the background of uneven light does not move with the
+//! stage), searched coarse to fine (a quarter of the resolution over ±[`MAX_SHIFT`],
+//! then ±1 at half and at full resolution), taken only when it beats no shift clearly
+//! ([`MIN_GAIN`]): a field that did not move keeps its contours where they were, and
+//! costs nine evaluations.
+
+use crate::image::Field;
+
+/// The largest shift searched, pixels (each way, along each axis).
+pub const MAX_SHIFT: i32 = 24;
+
+/// A shift is taken only when its mean squared difference is below this share of no
+/// shift's: noise alone never favours a neighbouring shift by that much.
+pub const MIN_GAIN: f64 = 0.8;
+
+/// Most pixels sampled (every k-th cell pixel beyond this).
+const MAX_SAMPLES: usize = 20_000;
+
+/// The shift `(dx, dy)` such that `after` at `x + (dx, dy)` is `before` at `x` over the
+/// pixels of `cells` (a label raster of `before`'s size, 0 outside every cell); `(0, 0)`
+/// when the field did not clearly move, the frames differ in size, or there are no cells.
+pub fn field_shift(before: &Field, after: &Field, cells: &[u32]) -> (i32, i32) {
+    let (w, h) = (before.width, before.height);
+    if after.width != w || after.height != h || cells.len() != w * h {
+        return (0, 0);
+    }
+    let on: Vec<usize> = (0..w * h).filter(|&i| cells[i] != 0).collect();
+    if on.is_empty() {
+        return (0, 0);
+    }
+    let step = on.len().div_ceil(MAX_SAMPLES);
+    let samples: Vec<(i32, i32)> = on
+        .iter()
+        .step_by(step)
+        .map(|&i| ((i % w) as i32, (i / w) as i32))
+        .collect();
+    let full = Level::new(before, after, &samples, 1);
+    let still = full.cost((0, 0));
+    let near = full.best_around((0, 0), 1);
+    if near == (0, 0) {
+        return (0, 0);
+    }
+    // The field moved: coarse to fine, so a move of many pixels is not mistaken for the
+    // nearest local minimum of a textured colony.
+    let (b2, a2) = (block_mean(before, 2), block_mean(after, 2));
+    let (b4, a4) = (block_mean(before, 4), block_mean(after, 4));
+    let quarter = Level::new(&b4, &a4, &samples, 4);
+    let mut s = quarter.best_around((0, 0), MAX_SHIFT / 4);
+    s = Level::new(&b2, &a2, &samples, 2).best_around((2 * s.0, 2 * s.1), 1);
+    s = full.best_around((2 * s.0, 2 * s.1), 1);
+    let best = if full.cost(near) < full.cost(s) {
+        near
+    } else {
+        s
+    };
+    if full.cost(best) < MIN_GAIN * still {
+        best
+    } else {
+        (0, 0)
+    }
+}
+
+/// `f` at 1/`k` of its resolution: the mean of each k×k block (a partial block at the
+/// right and bottom edges averages what it has). Cheaper than the pyramid's blurred
+/// reduction, and the same for both frames, which is all the search needs.
+fn block_mean(f: &Field, k: usize) -> Field {
+    let (w, h) = (f.width, f.height);
+    let (wk, hk) = (w.div_ceil(k), h.div_ceil(k));
+    let mut sum = vec![0f32; wk * hk];
+    let mut count = vec![0u16; wk * hk];
+    for y in 0..h {
+        let row = (y / k) * wk;
+        for x in 0..w {
+            sum[row + x / k] += f.data[y * w + x];
+            count[row + x / k] += 1;
+        }
+    }
+    let data = sum.iter().zip(&count).map(|(s, &n)| s / n as f32).collect();
+    Field::new(wk, hk, data)
+}
+
+/// One resolution of the search: the two frames at `scale` (1, 2, 4) and the samples
+/// at that resolution.
+struct Level<'a> {
+    before: &'a Field,
+    after: &'a Field,
+    samples: Vec<(i32, i32)>,
+}
+
+impl<'a> Level<'a> {
+    fn new(before: &'a Field, after: &'a Field, samples: &[(i32, i32)], scale: i32) -> Self {
+        let mut s: Vec<(i32, i32)> = samples
+            .iter()
+            .map(|&(x, y)| (x / scale, y / scale))
+            .collect();
+        s.dedup();
+        Level {
+            before,
+            after,
+            samples: s,
+        }
+    }
+
+    /// Mean squared difference of the samples moved by `s` that stay in the frame
+    /// (infinite when under half of them do).
+    fn cost(&self, s: (i32, i32)) -> f64 {
+        let (w, h) = (self.before.width as i32, self.before.height as i32);
+        let (mut sum, mut n) = (0.0f64, 0usize);
+        for &(x, y) in &self.samples {
+            let (u, v) = (x + s.0, y + s.1);
+            if u < 0 || v < 0 || u >= w || v >= h {
+                continue;
+            }
+            let d = self.after.data[(v * w + u) as usize] - self.before.data[(y * w + x) as usize];
+            sum += (d * d) as f64;
+            n += 1;
+        }
+        if 2 * n < self.samples.len() {
+            f64::INFINITY
+        } else {
+            sum / n as f64
+        }
+    }
+
+    /// The shift of least cost within `reach` of `centre` (the centre on a tie).
+    fn best_around(&self, centre: (i32, i32), reach: i32) -> (i32, i32) {
+        let mut best = (self.cost(centre), centre);
+        for dy in -reach..=reach {
+            for dx in -reach..=reach {
+                let s = (centre.0 + dx, centre.1 + dy);
+                let c = self.cost(s);
+                if c < best.0 {
+                    best = (c, s);
+                }
+            }
+        }
+        best.1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A frame of blurred-looking blobs at `offset`, with labels of the blobs unshifted.
+    fn scene(offset: (i32, i32)) -> (Field, Vec<u32>) {
+        let (w, h) = (120usize, 100usize);
+        let centres = [(30, 30, 8), (70, 40, 10), (50, 70, 7), (90, 75, 9)];
+        let mut data = vec![0.2f32; w * h];
+        let mut labels = vec![0u32; w * h];
+        for (k, &(cx, cy, r)) in centres.iter().enumerate() {
+            for y in 0..h as i32 {
+                for x in 0..w as i32 {
+                    let d2 = ((x - cx) * (x - cx) + (y - cy) * (y - cy)) as f32;
+                    let v = (-d2 / (r * r) as f32).exp();
+                    let (u, t) = (x + offset.0, y + offset.1);
+                    if (0..w as i32).contains(&u) && (0..h as i32).contains(&t) {
+                        data[(t * w as i32 + u) as usize] += 0.7 * v;
+                    }
+                    if d2 <= (r * r) as f32 {
+                        labels[(y * w as i32 + x) as usize] = k as u32 + 1;
+                    }
+                }
+            }
+        }
+        (Field::new(w, h, data), labels)
+    }
+
+    #[test]
+    fn a_moved_field_gives_its_shift_and_a_still_one_none() {
+        let (before, cells) = scene((0, 0));
+        for s in [(0, 0), (1, 0), (-2, 3), (9, -7), (-17, 14)] {
+            let (after, _) = scene(s);
+            assert_eq!(field_shift(&before, &after, &cells), s);
+        }
+        // No cells: nothing to tell the shift by.
+        let (after, _) = scene((5, 5));
+        assert_eq!(field_shift(&before, &after, &vec![0; cells.len()]), (0, 0));
+    }
+}
