@@ -10,6 +10,8 @@
 //!   little ([`carry::shrunk`]) so a cell that moved is still under its contour, and
 //!   evolves on frame t + 1 through the whole pyramid (coarse to fine, seed 004 §2.2:
 //!   the coarse levels carry a contour over a large move before the fine ones settle it);
+//!   when the whole field moved (a drifting stage), the contours are first moved with it
+//!   ([`drift`]);
 //! - the engine is [`crate::evolution::Mode::Track`]: moves go through the core under
 //!   [`crate::topology::TopologyPolicy::TRACKING`], so touching cells never merge, no
 //!   hole opens, and a cell that pinches splits;
@@ -41,7 +43,8 @@
 //!   from automatic seeds only, two touching cells with no seam between them are one cell
 //!   its seeds cut in two, and are joined before any track starts.
 //!
-//! Memory holds the frame being tracked and the contours and labels of the one before.
+//! Memory holds the frame being tracked and the image, contours and labels of the one
+//! before.
 
 pub mod carry;
 pub mod contrast;
