@@ -29,7 +29,7 @@ pub const MAX_SHIFT: i32 = 24;
 pub const MIN_GAIN: f64 = 0.8;
 
 /// Most pixels sampled (every k-th cell pixel beyond this).
-const MAX_SAMPLES: usize = 20_000;
+const MAX_SAMPLES: usize = 4_000;
 
 /// The shift `(dx, dy)` such that `after` at `x + (dx, dy)` is `before` at `x` over the
 /// pixels of `cells` (a label raster of `before`'s size, 0 outside every cell); `(0, 0)`
