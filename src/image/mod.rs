@@ -30,7 +30,7 @@ pub mod modality;
 pub mod model;
 pub mod noise;
 pub mod outline;
-mod patch;
+pub(crate) mod patch;
 pub mod scale;
 pub mod seeds;
 pub mod stored;

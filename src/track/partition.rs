@@ -34,6 +34,13 @@ pub const JOIN_SHARE: f64 = 0.7;
 /// Frame 0: and when their contact runs at least this share of the thinner one's width.
 pub const JOIN_CONTACT: f64 = 0.8;
 
+/// Frame 0: two touching cells whose union fills at least this share of its convex hull
+/// and is rounder than a rod ([`crate::track::neck::MIN_LOBE_ASPECT`]) are one body its
+/// seeds cut in two, seam or not: a nucleus's darker nucleoli can run along the cut and
+/// read as a seam, while two round cells that touch leave a notch at each end of their
+/// contact (two disks pressed 0.4 radii into each other fill 0.94 of their hull).
+pub const JOIN_SOLIDITY: f64 = 0.94;
+
 /// One group of touching cells of a label raster (labels 1..=n, 0 outside every cell)
 /// against one frame's region score, in the window that holds the group: the work is
 /// the touching cells' area, not the frame's.
@@ -148,6 +155,37 @@ impl Cells {
             deepest,
             score,
         }
+    }
+
+    /// Whether cells `a` and `b` together are one convex round body ([`JOIN_SOLIDITY`]).
+    fn one_body(&self, a: u32, b: u32) -> bool {
+        let mut pts = Vec::new();
+        let (mut n, mut sx, mut sy, mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        for (i, &l) in self.labels.iter().enumerate() {
+            if l != a && l != b {
+                continue;
+            }
+            let (x, y) = ((i % self.w) as f64 + 0.5, (i / self.w) as f64 + 0.5);
+            // Each pixel as the midpoints of its sides, so the hull holds whole pixels.
+            pts.extend([
+                Point::new(x - 0.5, y),
+                Point::new(x + 0.5, y),
+                Point::new(x, y - 0.5),
+                Point::new(x, y + 0.5),
+            ]);
+            n += 1.0;
+            (sx, sy) = (sx + x, sy + y);
+            (sxx, syy, sxy) = (sxx + x * x, syy + y * y, sxy + x * y);
+        }
+        if n < 3.0 {
+            return false;
+        }
+        let (mx, my) = (sx / n, sy / n);
+        let (vx, vy, c) = (sxx / n - mx * mx, syy / n - my * my, sxy / n - mx * my);
+        let (tr, disc) = (0.5 * (vx + vy), (0.25 * (vx - vy).powi(2) + c * c).sqrt());
+        let aspect = ((tr + disc) / (tr - disc).max(1e-12)).sqrt();
+        let hull = crate::geometry::signed_area(&crate::image::patch::convex_hull(pts)).abs();
+        aspect < crate::track::neck::MIN_LOBE_ASPECT && n >= JOIN_SOLIDITY * hull
     }
 
     /// Whether window pixel `i` is in its cell's core (a marker).
@@ -337,10 +375,8 @@ pub fn joins(labels: &[u32], model: &ImageModel) -> Vec<u32> {
             };
             let weaker = ca.min(cb);
             let thinner = 2.0 * depth(a).min(depth(b));
-            if weaker > 0.0
-                && sum / count as f64 >= JOIN_SHARE * weaker
-                && count as f64 >= JOIN_CONTACT * thinner
-            {
+            let seamless = weaker > 0.0 && sum / count as f64 >= JOIN_SHARE * weaker;
+            if count as f64 >= JOIN_CONTACT * thinner && (seamless || cells.one_body(a, b)) {
                 let (ra, rb) = (find(&mut root, a), find(&mut root, b));
                 root[ra.max(rb) as usize] = ra.min(rb);
             }
@@ -480,6 +516,46 @@ mod tests {
         assert!(area > 700.0 && area <= 800.0, "{area}");
         let labels = divided(34);
         assert_eq!(joins(&labels, &block(0.3)), [0, 1, 2]);
+    }
+
+    /// Bright disks (centre x, radius) at y = 30 on a dark ground, darker (0.5) along
+    /// column `dark`; labels: the disks' pixels, 1 left of column `cut` and 2 from it.
+    fn disks(d: &[(f64, f64)], dark: usize, cut: usize) -> (ImageModel, Vec<u32>) {
+        let (w, h) = (90, 60);
+        let on = |x: usize, y: usize| {
+            let p = Point::new(x as f64 + 0.5, y as f64 + 0.5);
+            d.iter().any(|&(cx, r)| p.dist(Point::new(cx, 30.0)) <= r)
+        };
+        let data = (0..w * h)
+            .map(|i| match (i % w, on(i % w, i / w)) {
+                (_, false) => 0.2,
+                (x, true) if x == dark => 0.5,
+                _ => 1.0,
+            })
+            .collect();
+        let labels = (0..w * h)
+            .map(|i| match on(i % w, i / w) {
+                false => 0,
+                true => 1 + (i % w >= cut) as u32,
+            })
+            .collect();
+        let params = ModelParams::seeds(Polarity::Bright, Modality::Fluorescence);
+        (
+            ImageModel::prepare(&Field::new(w, h, data), &params, &[]),
+            labels,
+        )
+    }
+
+    #[test]
+    fn a_round_body_cut_along_a_darker_band_is_joined_and_two_pressed_disks_are_not() {
+        // One nucleus cut where its nucleoli run darker: the band reads as a seam, but
+        // the union is round and convex.
+        let (model, labels) = disks(&[(40.0, 16.0)], 40, 40);
+        assert_eq!(joins(&labels, &model), [0, 1, 1]);
+        // Two disks pressed 0.4 radii into each other, the same band along their
+        // contact: two cells.
+        let (model, labels) = disks(&[(30.0, 12.0), (49.2, 12.0)], 40, 40);
+        assert_eq!(joins(&labels, &model), [0, 1, 2]);
     }
 
     #[test]
