@@ -217,6 +217,21 @@ fn stubby_sisters_of_a_wide_rod_divide_in_their_first_frame() {
 }
 
 #[test]
+fn two_cells_that_appear_as_one_and_part_are_not_a_division() {
+    // A cell on its own throughout; from frame 2 two more cells, pressed into one blob
+    // in their first frame, then apart: two new tracks, no parent.
+    let a = disk(20.0, 20.0, 7.0);
+    let frames: Vec<Field> = (0..5)
+        .map(|t| match t {
+            0 | 1 => blurred(frame(&[a])),
+            2 => blurred(frame(&[a, disk(52.0, 40.0, 8.0), disk(62.0, 40.0, 8.0)])),
+            _ => blurred(frame(&[a, disk(48.0, 40.0, 8.0), disk(68.0, 40.0, 8.0)])),
+        })
+        .collect();
+    assert_eq!(track(&frames), "1 0 4 0\n2 2 4 0\n3 3 4 0\n");
+}
+
+#[test]
 fn a_colony_on_a_drifting_stage_keeps_its_tracks() {
     // Four rods side by side 3 px apart; the whole field moves (7, 2) px a frame, so
     // each carried contour would land across its neighbour: it is moved with the field.

@@ -18,7 +18,9 @@
 //! - identity is the contour carried across frames; a contour that vanished (or was
 //!   dropped as clutter) ends its track; the pieces of a split are its two children,
 //!   whose parent is the track that split (a piece under [`MIN_DAUGHTER_SHARE`] of the
-//!   largest is a shred, not a daughter, and is dropped);
+//!   largest is a shred, not a daughter, and is dropped); but a cell picked up new in
+//!   the frame before that comes apart was cells found as one, and its pieces go on as
+//!   tracks of their own;
 //! - cells entering or appearing where no contour is are picked up by automatic seeds
 //!   that lie wholly outside every cell of the frame, placed only when it is time: every
 //!   [`TrackSettings::seed_every`] frames while some object area is left that no cell
@@ -462,6 +464,18 @@ impl Tracker {
             .collect()
     }
 
+    /// Whether track `track`, in pieces at frame `t`, is cells found as one rather than a
+    /// cell that divided: it was picked up new (after frame 0, from no division) in the
+    /// frame before. A cell divides a cell cycle after it is born, and one that came into
+    /// view is seldom caught in the very frame before it divides, while two cells that
+    /// appear touching are first taken for one (sim_plus_01, frame 53: docs/decisions.md,
+    /// 2026-12-05).
+    fn found_as_one(&self, track: u32, t: usize) -> bool {
+        self.lineage
+            .get(track)
+            .is_some_and(|k| k.parent == 0 && k.first > 0 && k.first + 1 == t)
+    }
+
     /// Gives the pieces of one shape their tracks: the same track for one piece of a
     /// tracked cell, two children for two or more (the two largest; any further piece
     /// starts a track of its own), new tracks for the pieces of a new seed.
@@ -473,6 +487,11 @@ impl Tracker {
             (Some(track), 1) => {
                 self.lineage.extend(track, t);
                 labels.push(track);
+            }
+            (Some(track), n) if self.found_as_one(track, t) => {
+                self.lineage.extend(track, t);
+                labels.push(track);
+                labels.extend((1..n).map(|_| self.lineage.start(t, 0)));
             }
             (Some(parent), _) => {
                 let children = [self.lineage.start(t, parent), self.lineage.start(t, parent)];
