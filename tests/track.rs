@@ -253,6 +253,23 @@ fn a_colony_on_a_drifting_stage_keeps_its_tracks() {
     assert_eq!(track(&frames), "1 0 4 0\n2 0 4 0\n3 0 4 0\n4 0 4 0\n");
 }
 
+#[test]
+fn a_cell_the_drift_carries_out_of_the_frame_ends_its_track() {
+    // Three rods drifting right 7 px a frame, and a cell near the right edge that the
+    // drift carries out: its outline is scaled into the frame, then its track ends.
+    let frames: Vec<Field> = (0..5)
+        .map(|t| {
+            let dx = 7.0 * t as f64;
+            let mut cells: Vec<Capsule> = [12.0, 25.0, 38.0]
+                .map(|x| (Point::new(x + dx, 14.0), Point::new(x + dx, 38.0), 5.0))
+                .into();
+            cells.push(disk(80.0 + dx, 48.0, 6.0));
+            blurred(frame(&cells))
+        })
+        .collect();
+    assert_eq!(track(&frames), "1 0 4 0\n2 0 4 0\n3 0 4 0\n4 0 2 0\n");
+}
+
 /// A round nucleus (frames 0–2), then two sister nuclei along x whose outlines are `gap`
 /// px apart in frame 3 and part by 2 px a frame on each side; blurred σ ≈ 1.2 (three
 /// passes), so the first frame's gap is a dip, not background.

@@ -299,22 +299,38 @@ impl Tracker {
         Ok(frame)
     }
 
-    /// Moves the last frame's cells (outlines and labels) by the field's shift `s`, the
-    /// outlines kept inside the `w`×`h` frame.
+    /// Moves the last frame's cells (outlines and labels) by the field's shift `s`. An
+    /// outline carried partly out of the `w`×`h` frame is scaled about its centre until
+    /// it fits (a similarity keeps it simple; the evolution then fills what shows of the
+    /// cell); one whose centre left the frame ends its track, as a cell that left it.
     fn follow(&mut self, s: (i32, i32), w: usize, h: usize) {
         let d = Point::new(s.0 as f64, s.1 as f64);
-        let (xmax, ymax) = (w as f64 - 0.5, h as f64 - 0.5);
-        // A cell carried out of the frame ends its track, as one that left it.
-        self.live.retain(|(_, ring)| {
+        let (lo, hi) = (
+            Point::new(0.5, 0.5),
+            Point::new(w as f64 - 0.5, h as f64 - 0.5),
+        );
+        let inside = |p: Point| (lo.x..=hi.x).contains(&p.x) && (lo.y..=hi.y).contains(&p.y);
+        self.live.retain_mut(|(_, ring)| {
             let c = crate::geometry::area2_centroid(ring).1 + d;
-            (0.0..w as f64).contains(&c.x) && (0.0..h as f64).contains(&c.y)
-        });
-        for (_, ring) in &mut self.live {
-            for p in ring.iter_mut() {
-                let q = *p + d;
-                *p = Point::new(q.x.clamp(0.5, xmax), q.y.clamp(0.5, ymax));
+            if !inside(c) {
+                return false;
             }
-        }
+            let mut f: f64 = 1.0;
+            for p in ring.iter_mut() {
+                *p = *p + d;
+                for (v, c, lo, hi) in [(p.x, c.x, lo.x, hi.x), (p.y, c.y, lo.y, hi.y)] {
+                    if v < lo {
+                        f = f.min((c - lo) / (c - v));
+                    } else if v > hi {
+                        f = f.min((hi - c) / (v - c));
+                    }
+                }
+            }
+            if f < 1.0 {
+                ring.iter_mut().for_each(|p| *p = c + (*p - c) * f);
+            }
+            true
+        });
         let mut moved = vec![0u32; w * h];
         for (i, &l) in self.labels.iter().enumerate() {
             let (x, y) = ((i % w) as i32 + s.0, (i / w) as i32 + s.1);
