@@ -42,8 +42,9 @@
 //! - the cells that touch another are divided again on each frame's image
 //!   ([`partition`]: a marker watershed from their cores, so the line between two cells
 //!   lies on the seam the image shows, not where their fronts first met); on frame 0,
-//!   from automatic seeds only, two touching cells with no seam between them are one cell
-//!   its seeds cut in two, and are joined before any track starts.
+//!   from automatic seeds only, two touching cells with no seam between them, or whose
+//!   union is one round convex body, are one cell its seeds cut in two, and are joined
+//!   before any track starts.
 //!
 //! Memory holds the frame being tracked and the image, contours and labels of the one
 //! before.

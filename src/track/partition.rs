@@ -338,9 +338,10 @@ pub fn repartition(labels: &[u32], model: &ImageModel) -> Vec<(u32, Vec<Point>)>
 }
 
 /// Frame 0's touching cells that are one cell cut in two by its seeds: pairs whose
-/// contact runs at least [`JOIN_CONTACT`] of the thinner one's width with the score
+/// contact runs at least [`JOIN_CONTACT`] of the thinner one's width, with the score
 /// along it at least [`JOIN_SHARE`] of the weaker core's (a seam between two cells —
-/// phase contrast's bright line, fluorescence's dark valley — lowers it). Returns, per
+/// phase contrast's bright line, fluorescence's dark valley — lowers it) or with a
+/// union that is one round convex body ([`JOIN_SOLIDITY`]). Returns, per
 /// label (index = label), the label it joins (itself when none), joined transitively.
 pub fn joins(labels: &[u32], model: &ImageModel) -> Vec<u32> {
     let (w, h) = model.size();
@@ -552,9 +553,9 @@ mod tests {
         // the union is round and convex.
         let (model, labels) = disks(&[(40.0, 16.0)], 40, 40);
         assert_eq!(joins(&labels, &model), [0, 1, 1]);
-        // Two disks pressed 0.4 radii into each other, the same band along their
-        // contact: two cells.
-        let (model, labels) = disks(&[(30.0, 12.0), (49.2, 12.0)], 40, 40);
+        // Two disks pressed 0.83 radii into each other, the same band along their
+        // contact: as convex, but elongated: two cells.
+        let (model, labels) = disks(&[(30.0, 12.0), (44.0, 12.0)], 37, 37);
         assert_eq!(joins(&labels, &model), [0, 1, 2]);
     }
 
