@@ -231,6 +231,19 @@ fn two_cells_that_appear_as_one_and_part_are_not_a_division() {
     assert_eq!(track(&frames), "1 0 4 0\n2 2 4 0\n3 3 4 0\n");
 }
 
+/// Upright rods (y 14–38, radius 5) at `xs`, the field moved by (`dx`, `dy`).
+fn upright_rods(xs: &[f64], dx: f64, dy: f64) -> Vec<Capsule> {
+    xs.iter()
+        .map(|&x| {
+            (
+                Point::new(x + dx, 14.0 + dy),
+                Point::new(x + dx, 38.0 + dy),
+                5.0,
+            )
+        })
+        .collect()
+}
+
 #[test]
 fn a_colony_on_a_drifting_stage_keeps_its_tracks() {
     // Four rods side by side 3 px apart; the whole field moves (7, 2) px a frame, so
@@ -238,16 +251,7 @@ fn a_colony_on_a_drifting_stage_keeps_its_tracks() {
     let frames: Vec<Field> = (0..5)
         .map(|t| {
             let (dx, dy) = (7.0 * t as f64, 2.0 * t as f64);
-            let rods: Vec<Capsule> = [12.0, 25.0, 38.0, 51.0]
-                .map(|x| {
-                    (
-                        Point::new(x + dx, 14.0 + dy),
-                        Point::new(x + dx, 38.0 + dy),
-                        5.0,
-                    )
-                })
-                .into();
-            blurred(frame(&rods))
+            blurred(frame(&upright_rods(&[12.0, 25.0, 38.0, 51.0], dx, dy)))
         })
         .collect();
     assert_eq!(track(&frames), "1 0 4 0\n2 0 4 0\n3 0 4 0\n4 0 4 0\n");
@@ -260,9 +264,7 @@ fn a_cell_the_drift_carries_out_of_the_frame_ends_its_track() {
     let frames: Vec<Field> = (0..5)
         .map(|t| {
             let dx = 7.0 * t as f64;
-            let mut cells: Vec<Capsule> = [12.0, 25.0, 38.0]
-                .map(|x| (Point::new(x + dx, 14.0), Point::new(x + dx, 38.0), 5.0))
-                .into();
+            let mut cells = upright_rods(&[12.0, 25.0, 38.0], dx, 0.0);
             cells.push(disk(80.0 + dx, 48.0, 6.0));
             blurred(frame(&cells))
         })
