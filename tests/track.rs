@@ -498,3 +498,57 @@ fn the_line_between_rods_side_by_side_turns_with_them() {
         assert!(iou > 0.75, "{iou}");
     }
 }
+
+/// A nucleus (frames 0–2) that parts in frame 3 into two lobes 6 px apart; from frame 4
+/// on the lobes are `rejoined` by a bridge 10 px wide (one dumbbell nucleus), or stay
+/// apart and part further (two daughters).
+fn parting(rejoined: bool) -> Vec<Field> {
+    let mut frames: Vec<Field> = [3.0, 4.0, 5.0]
+        .map(|h| frame(&[(Point::new(48.0 - h, 32.0), Point::new(48.0 + h, 32.0), 10.0)]))
+        .into();
+    frames.push(frame(&[disk(37.0, 32.0, 8.0), disk(59.0, 32.0, 8.0)]));
+    for k in 0..3 {
+        let off = 11.0 + 2.0 * k as f64;
+        frames.push(if rejoined {
+            frame(&[
+                disk(40.0, 32.0, 8.0),
+                disk(56.0, 32.0, 8.0),
+                (Point::new(40.0, 32.0), Point::new(56.0, 32.0), 5.0),
+            ])
+        } else {
+            frame(&[
+                disk(48.0 - off - 2.0, 32.0, 8.0),
+                disk(48.0 + off + 2.0, 32.0, 8.0),
+            ])
+        });
+    }
+    frames
+}
+
+#[test]
+fn a_nucleus_that_parts_for_one_frame_did_not_divide() {
+    let params = Params {
+        polarity: Polarity::Bright,
+        ..Params::default()
+    };
+    let mut tracker = Tracker::new(TrackSettings::new(params), Vec::new());
+    let mut seen = Vec::new();
+    for f in &parting(true) {
+        seen.push(tracker.step(f).unwrap());
+    }
+    // Frame 3 saw two sisters; frame 4 took them back, and frame 3 revised is the
+    // mother in two pieces.
+    assert_eq!(seen[3].divisions.len(), 1);
+    assert_eq!(seen[4].undone, seen[3].divisions);
+    let mut revised = seen[3].clone();
+    revised.take_back(&seen[4].undone);
+    assert!(revised.divisions.is_empty());
+    assert_eq!(
+        revised.objects.iter().map(|o| o.track).collect::<Vec<_>>(),
+        [1, 1]
+    );
+    assert_eq!(seen[4].objects.len(), 1);
+    assert_eq!(tracker.lineage().ctc_text(), "1 0 6 0\n");
+    // Daughters that stay apart divided.
+    assert_eq!(track(&parting(false)), "1 0 2 0\n2 3 6 1\n3 3 6 1\n");
+}

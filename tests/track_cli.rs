@@ -94,3 +94,84 @@ fn bad_movies_are_refused_before_any_output() {
     assert_eq!(run.status.code(), Some(2));
     assert!(!out.exists());
 }
+
+/// A capsule: the ends of its axis and its radius (a disk when they meet).
+type Capsule = ((f64, f64), (f64, f64), f64);
+
+/// A 16-bit 96×64 movie, page t the capsules `pages[t]` (260) on a dim ground (100).
+fn capsule_movie(path: &Path, pages: &[Vec<Capsule>]) {
+    let (w, h) = (96u32, 64u32);
+    let mut enc = TiffEncoder::new(std::fs::File::create(path).unwrap()).unwrap();
+    for caps in pages {
+        let data: Vec<u16> = (0..w * h)
+            .map(|i| {
+                let (x, y) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
+                let inside = caps.iter().any(|&((ax, ay), (bx, by), r)| {
+                    let (dx, dy) = (bx - ax, by - ay);
+                    let n2 = dx * dx + dy * dy;
+                    let t = if n2 > 0.0 {
+                        (((x - ax) * dx + (y - ay) * dy) / n2).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    (x - ax - t * dx).hypot(y - ay - t * dy) <= r
+                });
+                if inside {
+                    260
+                } else {
+                    100
+                }
+            })
+            .collect();
+        enc.write_image::<Gray16>(w, h, &data).unwrap();
+    }
+}
+
+#[test]
+fn a_division_the_next_frame_takes_back_is_written_as_one_cell() {
+    // A nucleus parts in frame 3 (two lobes 6 px apart) and is one dumbbell again from
+    // frame 4 on: no division, and frame 3's mask gives both lobes the mother's label.
+    let disk = |x: f64, r: f64| ((x, 32.0), (x, 32.0), r);
+    let mut pages: Vec<Vec<Capsule>> = [3.0, 4.0, 5.0]
+        .map(|h| vec![((48.0 - h, 32.0), (48.0 + h, 32.0), 10.0)])
+        .into();
+    pages.push(vec![disk(37.0, 8.0), disk(59.0, 8.0)]);
+    for _ in 0..3 {
+        pages.push(vec![
+            disk(40.0, 8.0),
+            disk(56.0, 8.0),
+            ((40.0, 32.0), (56.0, 32.0), 5.0),
+        ]);
+    }
+    let (m, out, csv) = (tmp("parts.tif"), tmp("parts-res"), tmp("parts.csv"));
+    capsule_movie(&m, &pages);
+    let run = Command::new(env!("CARGO_BIN_EXE_topocontour"))
+        .args(["track", &m.display().to_string(), "--object", "bright"])
+        .arg("--ctc")
+        .arg(&out)
+        .arg("--tracks-csv")
+        .arg(&csv)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("res_track.txt")).unwrap(),
+        "1 0 6 0\n"
+    );
+    let mask = image::open(out.join("mask003.tif")).unwrap().into_luma16();
+    assert_eq!(mask.get_pixel(37, 32).0[0], 1);
+    assert_eq!(mask.get_pixel(59, 32).0[0], 1);
+    assert_eq!(mask.get_pixel(48, 32).0[0], 0);
+    // One row per cell and frame: the mother in two pieces is one row.
+    let rows = std::fs::read_to_string(&csv).unwrap();
+    let frame3: Vec<&str> = rows
+        .lines()
+        .filter(|l| l.split(',').nth(1) == Some("3"))
+        .collect();
+    assert_eq!(frame3.len(), 1, "{rows}");
+    assert!(frame3[0].starts_with("1,3,"), "{rows}");
+}

@@ -15,7 +15,7 @@ use topocontour::evolution::Field;
 use topocontour::io::export::ctc;
 use topocontour::io::field_from_samples;
 use topocontour::io::movie::{normalise, Movie, MovieError};
-use topocontour::track::{Lineage, TrackedFrame};
+use topocontour::track::{take_back_labels, Lineage, TrackedFrame};
 
 /// `topocontour track`'s flags, parsed as the command line parses them.
 #[derive(Parser)]
@@ -102,14 +102,23 @@ fn run(
     frames: impl Iterator<Item = PyResult<Field>>,
 ) -> PyResult<Tracks> {
     let mut tracker = tracker_for(a, w, h).map_err(raise)?;
-    let mut kept = Vec::new();
+    let mut kept: Vec<TrackedFrame> = Vec::new();
     let mut labels = Vec::new();
     let mut csv = String::from(ctc::CSV_HEADER);
+    let size = w * h;
     for image in frames {
         let frame = tracker.step(&image?).map_err(bad)?;
+        // This frame may take back the divisions of the one before.
+        if let Some(before) = kept.last_mut() {
+            before.take_back(&frame.undone);
+            let at = labels.len() - size;
+            take_back_labels(&mut labels[at..], &frame.undone);
+        }
         labels.extend_from_slice(tracker.labels());
-        csv.push_str(&ctc::csv_rows(&frame, tracker.lineage()));
         kept.push(frame);
+    }
+    for frame in &kept {
+        csv.push_str(&ctc::csv_rows(frame, tracker.lineage()));
     }
     Ok(Tracks {
         name,

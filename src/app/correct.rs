@@ -230,13 +230,8 @@ pub fn corrected(
     height: usize,
 ) -> (TrackedFrame, Lineage) {
     let t = old.frame;
-    // The tracks that began before t, as they were up to t − 1 (labels are given in
-    // order of birth, so they are labels 1..=K and keep them when started again).
-    let mut new = Lineage::default();
-    for tr in lineage.tracks().iter().filter(|tr| tr.first < t) {
-        let label = new.start(tr.first, tr.parent);
-        new.extend(label, tr.last.min(t - 1));
-    }
+    // The tracks that began before t, as they were up to t − 1.
+    let mut new = lineage.before(t);
     // Cells from left to right: new tracks are numbered so, as tracking numbers them.
     cells.sort_by(|a, b| {
         (a.centroid.x, a.centroid.y)
@@ -290,6 +285,7 @@ pub fn corrected(
         frame: t,
         objects: Vec::new(),
         divisions: Vec::new(),
+        undone: Vec::new(),
         evolution_frames: old.evolution_frames,
     };
     let mut label_of = vec![0u32; cells.len()];

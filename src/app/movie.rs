@@ -422,6 +422,11 @@ impl TopoApp {
                         .filter(|tr| tr.id == job.tracking);
                     if let Some(tr) = same {
                         tr.frames.truncate(t);
+                        // This frame may take back the divisions of the one before.
+                        if let Some(before) = tr.frames.last_mut().filter(|_| !f.undone.is_empty())
+                        {
+                            Arc::make_mut(before).take_back(&f.undone);
+                        }
                         tr.frames.push(f);
                         tr.lineage = lineage;
                     }

@@ -3,17 +3,19 @@
 //! cells per frame and overlays.
 //!
 //! The movie is read whole once before anything is written (a bad movie: one line, exit
-//! 2, no output); then frame by frame, each frame's mask written as soon as it is
-//! tracked, so memory holds a frame, not the movie (the JSON, when asked, keeps every
-//! frame's contours until the end).
+//! 2, no output); then frame by frame, each frame's mask written once the next frame is
+//! tracked (which may take back the divisions of the one before:
+//! [`crate::track::TrackedFrame::undone`]), so memory holds two frames, not the movie
+//! (the JSON, when asked, keeps every frame's contours until the end).
 
 use super::run::{init_shapes, params_for, RunSettings};
 use super::{bad, note, Failure};
+use crate::evolution::Field;
 use crate::evolution::{Modality, Polarity};
 use crate::io::export::ctc;
 use crate::io::movie::Movie;
 use crate::io::{write_atomic, OutputFiles};
-use crate::track::{TrackSettings, TrackedFrame, Tracker};
+use crate::track::{take_back_labels, Lineage, TrackSettings, TrackedFrame, Tracker};
 use clap::Args;
 use std::path::{Path, PathBuf};
 
@@ -141,29 +143,39 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
     let plan = prepare(a)?;
     let mut kept: Vec<TrackedFrame> = Vec::new();
     let mut csv = String::from(ctc::CSV_HEADER);
-    for (t, image) in movie.frames().map_err(|e| bad(e.to_string()))?.enumerate() {
+    // A frame is written once the next is tracked, which may take back its divisions
+    // (sisters one cell again: [`TrackedFrame::undone`]): two frames are held, not the
+    // movie.
+    let mut held: Option<Held> = None;
+    let mut out = Out {
+        a,
+        plan: &plan,
+        frames: movie.len(),
+        size: (w, h),
+        csv: &mut csv,
+    };
+    for image in movie.frames().map_err(|e| bad(e.to_string()))? {
         let image = image.map_err(|e| bad(e.to_string()))?;
         let frame = tracker.step(&image).map_err(|e| bad(e.to_string()))?;
-        if let Some(dir) = &plan.ctc {
-            let bytes = ctc::label_image(tracker.labels(), w, h, true)
-                .ok_or_else(|| bad("more than 65,535 tracks for 16-bit label images"))?;
-            write(&dir.join(ctc::mask_name(t, movie.len())), &bytes)?;
-        }
-        if let Some(out) = &plan.overlay {
-            if a.overlay_frame.is_none_or(|f| f == t) {
-                let path = match a.overlay_frame {
-                    Some(_) => out.clone(),
-                    None => numbered(out, t, movie.len()),
-                };
-                write(&path, &ctc::png(&ctc::overlay_rgb(&image, &frame), w, h))?;
+        if let Some(mut before) = held.take() {
+            before.frame.take_back(&frame.undone);
+            take_back_labels(&mut before.labels, &frame.undone);
+            if let Some(last) = kept.last_mut() {
+                last.take_back(&frame.undone);
             }
-        }
-        if a.tracks_csv.is_some() {
-            csv.push_str(&ctc::csv_rows(&frame, tracker.lineage()));
+            out.write(&before, tracker.lineage())?;
         }
         if a.json.is_some() {
-            kept.push(frame);
+            kept.push(frame.clone());
         }
+        held = Some(Held {
+            labels: tracker.labels().to_vec(),
+            frame,
+            image,
+        });
+    }
+    if let Some(last) = held {
+        out.write(&last, tracker.lineage())?;
     }
     let lineage = tracker.lineage();
     if let Some(dir) = &plan.ctc {
@@ -188,6 +200,48 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
         divisions
     ));
     Ok(())
+}
+
+/// A tracked frame not yet written: its cells, label raster and image.
+struct Held {
+    frame: TrackedFrame,
+    labels: Vec<u32>,
+    image: Field,
+}
+
+/// Where the frames go as they are written.
+struct Out<'a> {
+    a: &'a TrackArgs,
+    plan: &'a Plan,
+    frames: usize,
+    size: (usize, usize),
+    csv: &'a mut String,
+}
+
+impl Out<'_> {
+    /// Writes one frame: its mask, its overlay if asked, its CSV rows.
+    fn write(&mut self, held: &Held, lineage: &Lineage) -> Result<(), Failure> {
+        let (a, (w, h), t) = (self.a, self.size, held.frame.frame);
+        if let Some(dir) = &self.plan.ctc {
+            let bytes = ctc::label_image(&held.labels, w, h, true)
+                .ok_or_else(|| bad("more than 65,535 tracks for 16-bit label images"))?;
+            write(&dir.join(ctc::mask_name(t, self.frames)), &bytes)?;
+        }
+        if let Some(out) = &self.plan.overlay {
+            if a.overlay_frame.is_none_or(|f| f == t) {
+                let path = match a.overlay_frame {
+                    Some(_) => out.clone(),
+                    None => numbered(out, t, self.frames),
+                };
+                let rgb = ctc::overlay_rgb(&held.image, &held.frame);
+                write(&path, &ctc::png(&rgb, w, h))?;
+            }
+        }
+        if a.tracks_csv.is_some() {
+            self.csv.push_str(&ctc::csv_rows(&held.frame, lineage));
+        }
+        Ok(())
+    }
 }
 
 /// Checks the outputs: the CTC folder is made if missing (it must not be a file), the

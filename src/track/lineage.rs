@@ -36,16 +36,20 @@ impl Division {
     }
 }
 
-/// The tracks of a movie so far.
+/// The tracks of a movie so far, by label. Labels are given in order of birth and never
+/// given again, so a withdrawn track leaves a gap.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Lineage {
     tracks: Vec<Track>,
+    /// The last label given.
+    given: u32,
 }
 
 impl Lineage {
     /// A new track starting at `frame`; returns its label.
     pub fn start(&mut self, frame: usize, parent: u32) -> u32 {
-        let label = self.tracks.len() as u32 + 1;
+        self.given += 1;
+        let label = self.given;
         self.tracks.push(Track {
             label,
             first: frame,
@@ -57,9 +61,34 @@ impl Lineage {
 
     /// Track `label` is seen in `frame`.
     pub fn extend(&mut self, label: u32, frame: usize) {
-        if let Some(t) = self.tracks.get_mut(label as usize - 1) {
+        if let Ok(k) = self.tracks.binary_search_by_key(&label, |t| t.label) {
+            let t = &mut self.tracks[k];
             t.last = t.last.max(frame);
         }
+    }
+
+    /// Takes back `division`: its children are no tracks, and its parent goes on to
+    /// `frame` (sisters that came apart for a frame and were one cell again).
+    pub fn undo(&mut self, division: &Division, frame: usize) {
+        self.tracks
+            .retain(|t| !division.children.contains(&t.label));
+        self.extend(division.parent, frame);
+    }
+
+    /// The tracks that began before `frame`, as they were up to `frame − 1`; labels given
+    /// later follow the largest kept.
+    pub fn before(&self, frame: usize) -> Lineage {
+        let tracks: Vec<Track> = self
+            .tracks
+            .iter()
+            .filter(|t| t.first < frame)
+            .map(|t| Track {
+                last: t.last.min(frame.saturating_sub(1)),
+                ..*t
+            })
+            .collect();
+        let given = tracks.last().map_or(0, |t| t.label);
+        Lineage { tracks, given }
     }
 
     /// All tracks, by label.
@@ -69,7 +98,8 @@ impl Lineage {
 
     /// The track of `label`.
     pub fn get(&self, label: u32) -> Option<&Track> {
-        self.tracks.get((label as usize).checked_sub(1)?)
+        let k = self.tracks.binary_search_by_key(&label, |t| t.label).ok()?;
+        self.tracks.get(k)
     }
 
     /// `res_track.txt` of the Cell Tracking Challenge: `L B E P` per track.
@@ -95,5 +125,26 @@ mod tests {
         l.extend(b, 9);
         assert_eq!(l.ctc_text(), "1 0 4 0\n2 5 9 1\n3 5 5 1\n");
         assert_eq!(l.get(c).unwrap().parent, 1);
+    }
+
+    #[test]
+    fn a_division_taken_back_leaves_a_gap_no_label_fills() {
+        let mut l = Lineage::default();
+        let a = l.start(0, 0);
+        let d = Division {
+            frame: 3,
+            parent: a,
+            children: [l.start(3, a), l.start(3, a)],
+        };
+        let other = l.start(3, 0);
+        l.undo(&d, 4);
+        assert_eq!(l.ctc_text(), "1 0 4 0\n4 3 3 0\n");
+        assert_eq!(l.get(2), None);
+        assert_eq!(l.get(other).unwrap().first, 3);
+        assert_eq!(l.start(5, 0), 5);
+        // Before frame 4: the tracks begun by then, cut at frame 3; new labels follow.
+        let mut b = l.before(4);
+        assert_eq!(b.ctc_text(), "1 0 3 0\n4 3 3 0\n");
+        assert_eq!(b.start(4, 0), 5);
     }
 }

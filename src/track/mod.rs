@@ -141,8 +141,40 @@ pub struct TrackedFrame {
     pub objects: Vec<TrackedObject>,
     /// Divisions whose children start in this frame.
     pub divisions: Vec<Division>,
+    /// Divisions of the frame before that this frame took back: sisters that came
+    /// apart there and are one cell again here (see [`TrackedFrame::take_back`]).
+    pub undone: Vec<Division>,
     /// Frames the evolution ran.
     pub evolution_frames: usize,
+}
+
+impl TrackedFrame {
+    /// This frame as the next one revised it (its [`TrackedFrame::undone`]): the
+    /// divisions taken back are gone, and their children's cells are their parent's,
+    /// one cell seen in two pieces.
+    pub fn take_back(&mut self, undone: &[Division]) {
+        for d in undone {
+            self.divisions.retain(|x| x != d);
+            for o in self.objects.iter_mut() {
+                if d.children.contains(&o.track) {
+                    o.track = d.parent;
+                }
+            }
+        }
+        self.objects.sort_by_key(|o| o.track);
+    }
+}
+
+/// A frame's label raster as the next frame revised it (its [`TrackedFrame::undone`]):
+/// the children of the divisions taken back are their parent.
+pub fn take_back_labels(labels: &mut [u32], undone: &[Division]) {
+    for d in undone {
+        for l in labels.iter_mut() {
+            if d.children.contains(l) {
+                *l = d.parent;
+            }
+        }
+    }
 }
 
 /// What one evolution of a frame gave: per shape, its pieces (largest first); the
@@ -169,6 +201,9 @@ pub struct Tracker {
     residual: usize,
     /// The last frame's image, to tell how far the field moved ([`drift`]).
     previous: Option<Field>,
+    /// The last frame's divisions whose daughters were born apart ([`partition::meet`]):
+    /// taken back when the two are one cell again in this frame ([`partition::rejoined`]).
+    apart: Vec<Division>,
 }
 
 impl Tracker {
@@ -184,6 +219,7 @@ impl Tracker {
             next_seeding: 0,
             residual: 0,
             previous: None,
+            apart: Vec::new(),
         }
     }
 
@@ -251,6 +287,7 @@ impl Tracker {
             frame: t,
             objects: Vec::new(),
             divisions: Vec::new(),
+            undone: Vec::new(),
             evolution_frames,
         };
         let joined = match (model.as_deref(), automatic) {
@@ -289,7 +326,16 @@ impl Tracker {
             if partition::divide_again(&mut frame.objects, &self.labels, m) {
                 self.labels = raster(&frame.objects);
             }
+            if self.rejoin(&mut frame, m) {
+                self.labels = raster(&frame.objects);
+            }
         }
+        self.apart = frame
+            .divisions
+            .iter()
+            .filter(|d| !partition::meet(&self.labels, w, h, d.children))
+            .copied()
+            .collect();
         self.live = frame
             .objects
             .iter()
@@ -491,6 +537,36 @@ impl Tracker {
         self.lineage
             .get(track)
             .is_some_and(|k| k.parent == 0 && k.first > 0 && k.first + 1 == t)
+    }
+
+    /// Takes back the last frame's divisions whose daughters came apart there and are
+    /// one cell again in `frame` ([`partition::rejoined`]): a nucleus that parts for a
+    /// frame, its two lobes a gap apart, and closes again the next was never two cells
+    /// (sim_plus_01, frame 38: `docs/decisions.md`, 2026-12-05). The parent goes on as
+    /// the union of the two; the frame before is revised by
+    /// [`TrackedFrame::take_back`]. Whether any was.
+    fn rejoin(&mut self, frame: &mut TrackedFrame, model: &ImageModel) -> bool {
+        let mut any = false;
+        for d in std::mem::take(&mut self.apart) {
+            let [a, b] = d.children;
+            let here = |l: u32| frame.objects.iter().filter(|o| o.track == l).count() == 1;
+            if !(here(a) && here(b)) {
+                continue;
+            }
+            let Some(ring) = partition::rejoined(&self.labels, a, b, model) else {
+                continue;
+            };
+            frame.objects.retain(|o| o.track != a && o.track != b);
+            frame.objects.push(TrackedObject {
+                track: d.parent,
+                ..object(ring)
+            });
+            self.lineage.undo(&d, frame.frame);
+            frame.undone.push(d);
+            any = true;
+        }
+        frame.objects.sort_by_key(|o| o.track);
+        any
     }
 
     /// Gives the pieces of one shape their tracks: the same track for one piece of a

@@ -41,6 +41,23 @@ pub const JOIN_CONTACT: f64 = 0.8;
 /// contact (two disks pressed 0.4 radii into each other fill 0.94 of their hull).
 pub const JOIN_SOLIDITY: f64 = 0.94;
 
+/// Sisters that came apart and meet again the next frame are one cell again when their
+/// contact runs at least this share of the thinner one's width (and shows object
+/// between them: [`REJOIN_SHARE`]).
+pub const REJOIN_CONTACT: f64 = 0.3;
+
+/// The widest gap (pixels) between two cells' rasters that still counts as their contact
+/// when sisters are judged one cell again ([`rejoined`]): fronts held apart where the
+/// image is dimmer than either cell's body settle two or three pixels apart.
+pub const REJOIN_GAP: usize = 3;
+
+/// Sisters meet with object between them when the score where they meet (their rims
+/// and the gap) is at least this share of the weaker core's: well above the decision
+/// level, where a background gap reads below it. Bacteria sisters a frame old, which
+/// touch across their forming septum, score from −0.2 to 0.8 there, so the test holds
+/// only for sisters that came apart ([`crate::track::Tracker`]).
+pub const REJOIN_SHARE: f64 = 0.25;
+
 /// One group of touching cells of a label raster (labels 1..=n, 0 outside every cell)
 /// against one frame's region score, in the window that holds the group: the work is
 /// the touching cells' area, not the frame's.
@@ -201,6 +218,37 @@ impl Cells {
     /// Whether cell `l` has a core (some pixel not on its border).
     fn has_core(&self, l: u32) -> bool {
         self.deepest.get(&l).is_some_and(|&(d, _)| d > 0.0)
+    }
+
+    /// The outline of cells `a` and `b` together, in frame coordinates (region on the
+    /// left), followed from the deepest pixel of their union.
+    fn union_ring(&self, a: u32, b: u32) -> Option<Vec<Point>> {
+        let merged: Vec<u32> = self
+            .labels
+            .iter()
+            .map(|&l| u32::from(l == a || l == b))
+            .collect();
+        let inside: Vec<bool> = (0..merged.len())
+            .map(|i| merged[i] != 0 && neighbours4(i, self.w, self.h).all(|j| merged[j] != 0))
+            .collect();
+        let dist = distance_transform(&inside, self.w, self.h);
+        let (d, at) =
+            dist.data.iter().enumerate().fold(
+                (0f32, 0usize),
+                |m, (i, &d)| if d > m.0 { (d, i) } else { m },
+            );
+        if d <= 0.0 {
+            return None;
+        }
+        let shift = Point::new(self.origin.0 as f64, self.origin.1 as f64);
+        let mut ring: Vec<Point> = basin_outline(&merged, 1, at, self.w, self.h)?
+            .into_iter()
+            .map(|p| p + shift)
+            .collect();
+        if crate::geometry::signed_area(&ring) < 0.0 {
+            ring.reverse();
+        }
+        Some(ring)
     }
 
     /// The marker watershed of the group (see the module doc).
@@ -426,6 +474,130 @@ pub fn joined_rings(labels: &[u32], roots: &[u32], model: &ImageModel) -> Vec<(u
         .collect()
 }
 
+/// Sisters `a` and `b` of the label raster `labels` (the model's size), born apart the
+/// frame before, that are one cell again: they meet, directly or across a gap of at
+/// most [`REJOIN_GAP`] pixels (two fronts held apart by the tracking policy leave a
+/// pixel or so between their rasters), along at least [`REJOIN_CONTACT`] of the thinner
+/// one's width, with object between them (the score where they meet at least
+/// [`REJOIN_SHARE`] of the weaker core's). Returns the outline of their union with the
+/// gap between.
+pub fn rejoined(labels: &[u32], a: u32, b: u32, model: &ImageModel) -> Option<Vec<Point>> {
+    let (fw, fh) = model.size();
+    if labels.len() != fw * fh || a == b {
+        return None;
+    }
+    let mut bx = [usize::MAX, usize::MAX, 0, 0];
+    for (i, &l) in labels.iter().enumerate() {
+        if l == a || l == b {
+            let (x, y) = (i % fw, i / fw);
+            bx = [bx[0].min(x), bx[1].min(y), bx[2].max(x), bx[3].max(y)];
+        }
+    }
+    if bx[0] == usize::MAX {
+        return None;
+    }
+    let mut cells = Cells::new(labels, model, &[a.min(b), a.max(b)], bx);
+    let (w, h) = (cells.w, cells.h);
+    let mean_core = |l: u32| {
+        let (sum, n) = (0..w * h)
+            .filter(|&i| cells.labels[i] == l && cells.in_core(i))
+            .fold((0.0, 0usize), |(s, n), i| {
+                (s + cells.score.data[i] as f64, n + 1)
+            });
+        (n > 0).then(|| sum / n as f64)
+    };
+    let weaker = mean_core(a)?.min(mean_core(b)?);
+    let depth = |l: u32| cells.deepest.get(&l).map_or(0.0, |d| d.0 as f64);
+    let thinner = 2.0 * depth(a).min(depth(b));
+    // Where they meet: the pixels of each run from one to the other and the gap between.
+    let view = model.level(0);
+    let frame_index = |i: usize| (cells.origin.1 + i / w) * fw + cells.origin.0 + i % w;
+    let mut bridge: Vec<usize> = Vec::new();
+    let (mut runs, mut sum, mut n) = (0usize, 0.0, 0usize);
+    meeting_runs(&cells.labels, w, h, [a, b], |ends, gap| {
+        runs += 1;
+        for &p in gap.iter().chain(ends.iter()) {
+            sum += view.pixel_score(frame_index(p));
+            n += 1;
+        }
+        bridge.extend_from_slice(gap);
+    });
+    if runs == 0 || weaker <= 0.0 {
+        return None;
+    }
+    let seamless = sum / n as f64 >= REJOIN_SHARE * weaker;
+    // Runs are counted along rows and columns both; a contact as long as the thinner
+    // width gives about that many of one kind.
+    if !(seamless && runs as f64 >= REJOIN_CONTACT * thinner) {
+        return None;
+    }
+    for p in bridge {
+        cells.labels[p] = a;
+    }
+    cells.union_ring(a, b)
+}
+
+/// Whether cells `pair` of the label raster `labels` (`w`×`h`) meet: a pixel of one
+/// lies within [`REJOIN_GAP`] + 1 pixels of one of the other (in any direction). Sisters
+/// that do not were born apart, with background between them; a neck cut leaves a
+/// pixel or two.
+pub fn meet(labels: &[u32], w: usize, h: usize, [a, b]: [u32; 2]) -> bool {
+    let r = REJOIN_GAP as isize + 1;
+    labels.iter().enumerate().any(|(i, &l)| {
+        l == a && {
+            let (x, y) = ((i % w) as isize, (i / w) as isize);
+            (-r..=r).any(|dy| {
+                (-r..=r).any(|dx| {
+                    let (xx, yy) = (x + dx, y + dy);
+                    dx * dx + dy * dy <= r * r
+                        && (0..w as isize).contains(&xx)
+                        && (0..h as isize).contains(&yy)
+                        && labels[yy as usize * w + xx as usize] == b
+                })
+            })
+        }
+    })
+}
+
+/// Calls `visit(ends, gap)` for each run along a row or a column from a pixel of one of
+/// `pair` to a pixel of the other across at most [`REJOIN_GAP`] empty pixels: `ends`
+/// the two cells' pixels, `gap` the empty ones between.
+fn meeting_runs(
+    labels: &[u32],
+    w: usize,
+    h: usize,
+    [a, b]: [u32; 2],
+    mut visit: impl FnMut([usize; 2], &[usize]),
+) {
+    let mut gap = Vec::with_capacity(REJOIN_GAP);
+    for (i, &l) in labels.iter().enumerate() {
+        let other = match l {
+            l if l == a => b,
+            l if l == b => a,
+            _ => continue,
+        };
+        let (x, y) = (i % w, i / w);
+        for (dx, dy) in [(1, 0), (0, 1)] {
+            gap.clear();
+            for k in 1..=REJOIN_GAP + 1 {
+                let (xx, yy) = (x + k * dx, y + k * dy);
+                if xx >= w || yy >= h {
+                    break;
+                }
+                let j = yy * w + xx;
+                match labels[j] {
+                    0 => gap.push(j),
+                    m if m == other => {
+                        visit([i, j], &gap);
+                        break;
+                    }
+                    _ => break,
+                }
+            }
+        }
+    }
+}
+
 /// An order-preserving key for an `f32` (negative scores included).
 fn ordered_bits(s: f32) -> u32 {
     let b = s.to_bits();
@@ -580,5 +752,23 @@ mod tests {
         let mut p = pieces();
         assert!(join_pieces(&mut p, &block(0.3)).is_empty());
         assert_eq!((p[0].len(), p[1].len()), (1, 1));
+    }
+
+    #[test]
+    fn cells_meet_across_a_gap_of_up_to_three_pixels_in_any_direction() {
+        let (w, h) = (20, 20);
+        // A pixel of 1 at (5, 5) and of 2 at (5 + dx, 5 + dy).
+        let meets = |dx: usize, dy: usize| {
+            let mut l = vec![0u32; w * h];
+            l[5 * w + 5] = 1;
+            l[(5 + dy) * w + 5 + dx] = 2;
+            meet(&l, w, h, [1, 2])
+        };
+        assert!(meets(1, 0));
+        assert!(meets(4, 0));
+        assert!(!meets(5, 0));
+        assert!(meets(2, 2));
+        assert!(!meets(3, 3));
+        assert!(meets(0, 4));
     }
 }

@@ -107,21 +107,27 @@ pub(in crate::app) fn divisions_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
 /// The rows of the lineage view: tracks in depth-first order from each root (by label),
 /// so daughters sit beside their parent.
 fn rows(tracks: &[Track]) -> Vec<usize> {
-    let mut children: Vec<Vec<usize>> = vec![Vec::new(); tracks.len() + 1];
+    // Per track (by index), its daughters' indices.
+    let mut children: Vec<Vec<usize>> = vec![Vec::new(); tracks.len()];
     let mut roots = Vec::new();
     for (i, t) in tracks.iter().enumerate() {
-        match t.parent {
-            0 => roots.push(i),
-            p => children[p as usize].push(i),
+        match index_of(tracks, t.parent) {
+            Some(p) => children[p].push(i),
+            None => roots.push(i),
         }
     }
     let mut order = Vec::with_capacity(tracks.len());
     let mut stack: Vec<usize> = roots.into_iter().rev().collect();
     while let Some(i) = stack.pop() {
         order.push(i);
-        stack.extend(children[tracks[i].label as usize].iter().rev());
+        stack.extend(children[i].iter().rev());
     }
     order
+}
+
+/// Where track `label` is in `tracks` (by label; a taken-back division leaves gaps).
+fn index_of(tracks: &[Track], label: u32) -> Option<usize> {
+    tracks.binary_search_by_key(&label, |t| t.label).ok()
 }
 
 /// The lineage view: x is the frame, one row per track in its colour; a fork joins a
@@ -221,9 +227,8 @@ fn draw_tracks(
             [Pos2::new(x0, y), Pos2::new(x1, y)],
             Stroke::new(width, colour),
         );
-        if t.parent != 0 {
+        if let Some(p) = index_of(tracks, t.parent) {
             // The fork: from the parent's end down (or up) to this daughter's start.
-            let p = t.parent as usize - 1;
             let (px, py) = (l.x(tracks[p].last), l.y(row_of[p]));
             painter.line_segment(
                 [Pos2::new(px, py), Pos2::new(x0, y)],

@@ -39,16 +39,29 @@ pub fn label_image(labels: &[u32], width: usize, height: usize, tiff: bool) -> O
 /// The CSV header of [`csv_rows`].
 pub const CSV_HEADER: &str = "track,frame,area_px,centroid_x,centroid_y,parent\n";
 
-/// One row per cell of `frame`: track, frame, area, centroid, parent track (0: none).
+/// One row per cell of `frame`: track, frame, area, centroid, parent track (0: none). A
+/// cell seen in two pieces (sisters taken back: [`TrackedFrame::take_back`]) is one row,
+/// its area the pieces' sum and its centroid theirs.
 pub fn csv_rows(frame: &TrackedFrame, lineage: &Lineage) -> String {
-    frame
-        .objects
-        .iter()
-        .map(|o| {
-            let parent = lineage.get(o.track).map_or(0, |t| t.parent);
+    let mut rows: Vec<(u32, f64, f64, f64)> = Vec::new();
+    for o in &frame.objects {
+        let (x, y) = (o.area * o.centroid.x, o.area * o.centroid.y);
+        match rows.last_mut().filter(|r| r.0 == o.track) {
+            Some(r) => (r.1, r.2, r.3) = (r.1 + o.area, r.2 + x, r.3 + y),
+            None => rows.push((o.track, o.area, x, y)),
+        }
+    }
+    rows.into_iter()
+        .map(|(track, area, x, y)| {
+            let parent = lineage.get(track).map_or(0, |t| t.parent);
+            let (cx, cy) = if area > 0.0 {
+                (x / area, y / area)
+            } else {
+                (0.0, 0.0)
+            };
             format!(
                 "{},{},{:.2},{:.3},{:.3},{}\n",
-                o.track, frame.frame, o.area, o.centroid.x, o.centroid.y, parent
+                track, frame.frame, area, cx, cy, parent
             )
         })
         .collect()
