@@ -59,6 +59,27 @@ fn dividing_rod() -> Vec<image::GrayImage> {
     frames
 }
 
+/// A nucleus that parts into two lobes 6 px apart at frame 3 and is one dumbbell again
+/// from frame 4 on (tests/track.rs): no division.
+fn parting_nucleus() -> Vec<image::GrayImage> {
+    let disk = |x: f64, r: f64| (Point::new(x, 32.0), Point::new(x, 32.0), r);
+    let mut frames: Vec<_> = [3.0, 4.0, 5.0]
+        .map(|h| {
+            frame(
+                96,
+                64,
+                &[(Point::new(48.0 - h, 32.0), Point::new(48.0 + h, 32.0), 10.0)],
+            )
+        })
+        .into();
+    frames.push(frame(96, 64, &[disk(37.0, 8.0), disk(59.0, 8.0)]));
+    for _ in 0..3 {
+        let bridge = (Point::new(40.0, 32.0), Point::new(56.0, 32.0), 5.0);
+        frames.push(frame(96, 64, &[disk(40.0, 8.0), disk(56.0, 8.0), bridge]));
+    }
+    frames
+}
+
 /// The app on the movie in `dir`, bright objects, drawn once.
 fn movie_app(dir: &std::path::Path) -> Harness<'static, TopoApp> {
     let mut app = TopoApp::default();
@@ -186,6 +207,25 @@ fn a_division_is_listed_in_the_event_log_and_a_click_shows_its_frame() {
         1,
         "the frame shown is the division's"
     );
+}
+
+#[test]
+fn a_division_the_next_frame_takes_back_leaves_the_event_log_and_the_lineage() {
+    let dir = movie_folder("parting", &parting_nucleus());
+    let mut h = movie_app(&dir);
+    click_label(&mut h, "Track movie");
+    wait_for_tracking(&mut h);
+    let tr = tracking(&h);
+    assert!(tr.complete);
+    assert_eq!(tr.lineage.ctc_text(), "1 0 6 0\n");
+    assert_eq!(tr.divisions().count(), 0);
+    // Frame 3 shows the mother in two pieces, both in her colour and track.
+    let tracks: Vec<u32> = tr.frames[3].objects.iter().map(|o| o.track).collect();
+    assert_eq!(tracks, [1, 1]);
+    h.state_mut().send(Command::SeekMovieFrame(3));
+    h.step();
+    assert_no_error(&h);
+    assert!(h.query_by_label("Divisions (0)").is_some());
 }
 
 #[test]
