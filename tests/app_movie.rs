@@ -91,6 +91,15 @@ fn movie_app(dir: &std::path::Path) -> Harness<'static, TopoApp> {
     h
 }
 
+/// The app on `frames` (written as the movie folder `name`), tracked to the end.
+fn tracked_movie(name: &str, frames: &[image::GrayImage]) -> Harness<'static, TopoApp> {
+    let dir = movie_folder(name, frames);
+    let mut h = movie_app(&dir);
+    click_label(&mut h, "Track movie");
+    wait_for_tracking(&mut h);
+    h
+}
+
 /// Draws frames until tracking has ended (at most a minute).
 fn wait_for_tracking(h: &mut Harness<'_, TopoApp>) {
     let start = std::time::Instant::now();
@@ -173,10 +182,7 @@ fn the_movie_slider_shows_frames_and_track_runs_with_cancel() {
 
 #[test]
 fn a_division_is_listed_in_the_event_log_and_a_click_shows_its_frame() {
-    let dir = movie_folder("division", &dividing_rod());
-    let mut h = movie_app(&dir);
-    click_label(&mut h, "Track movie");
-    wait_for_tracking(&mut h);
+    let mut h = tracked_movie("division", &dividing_rod());
     let tr = h
         .state()
         .doc
@@ -211,10 +217,7 @@ fn a_division_is_listed_in_the_event_log_and_a_click_shows_its_frame() {
 
 #[test]
 fn a_division_the_next_frame_takes_back_leaves_the_event_log_and_the_lineage() {
-    let dir = movie_folder("parting", &parting_nucleus());
-    let mut h = movie_app(&dir);
-    click_label(&mut h, "Track movie");
-    wait_for_tracking(&mut h);
+    let mut h = tracked_movie("parting", &parting_nucleus());
     let tr = tracking(&h);
     assert!(tr.complete);
     assert_eq!(tr.lineage.ctc_text(), "1 0 6 0\n");
@@ -230,10 +233,7 @@ fn a_division_the_next_frame_takes_back_leaves_the_event_log_and_the_lineage() {
 
 #[test]
 fn the_lineage_view_selects_a_track_and_shows_its_frame() {
-    let dir = movie_folder("lineage", &dividing_rod());
-    let mut h = movie_app(&dir);
-    click_label(&mut h, "Track movie");
-    wait_for_tracking(&mut h);
+    let mut h = tracked_movie("lineage", &dividing_rod());
     // Rows in depth-first order: track 1, then its daughters 2 and 3, 10 px each, in a
     // view inset 4 px across and 8 px down; x runs over frames 0 to 7.
     let r = h.get_by_label("Lineage view").rect();
@@ -304,10 +304,7 @@ fn tracking(h: &Harness<'_, TopoApp>) -> topocontour::app::Tracking {
 
 /// The dividing rod tracked (1 divides into 2 and 3 at frame 4), frame `t` on screen.
 fn tracked_rod(name: &str, t: usize) -> Harness<'static, TopoApp> {
-    let dir = movie_folder(name, &dividing_rod());
-    let mut h = movie_app(&dir);
-    click_label(&mut h, "Track movie");
-    wait_for_tracking(&mut h);
+    let mut h = tracked_movie(name, &dividing_rod());
     assert_eq!(
         tracking(&h).lineage.ctc_text(),
         "1 0 3 0\n2 4 7 1\n3 4 7 1\n"

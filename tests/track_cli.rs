@@ -32,6 +32,11 @@ fn movie(path: &Path, sizes: &[(u32, u32)]) {
 }
 
 fn track(movie: &Path, out: &Path) -> std::process::Output {
+    track_with(movie, out, &[])
+}
+
+/// `track MOVIE --object bright --ctc OUT` and `more`.
+fn track_with(movie: &Path, out: &Path, more: &[&Path]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_topocontour"))
         .args([
             "track",
@@ -41,15 +46,13 @@ fn track(movie: &Path, out: &Path) -> std::process::Output {
             "--ctc",
         ])
         .arg(out)
+        .args(more)
         .output()
         .unwrap()
 }
 
-#[test]
-fn a_sixteen_bit_movie_gives_the_ctc_layout() {
-    let (m, out) = (tmp("ok.tif"), tmp("ok-res"));
-    movie(&m, &[(80, 64); 4]);
-    let run = track(&m, &out);
+/// Checks that `run` succeeded and wrote `tracks` as OUT/res_track.txt.
+fn tracked(run: &std::process::Output, out: &Path, tracks: &str) {
     assert!(
         run.status.success(),
         "{}",
@@ -57,8 +60,15 @@ fn a_sixteen_bit_movie_gives_the_ctc_layout() {
     );
     assert_eq!(
         std::fs::read_to_string(out.join("res_track.txt")).unwrap(),
-        "1 0 3 0\n"
+        tracks
     );
+}
+
+#[test]
+fn a_sixteen_bit_movie_gives_the_ctc_layout() {
+    let (m, out) = (tmp("ok.tif"), tmp("ok-res"));
+    movie(&m, &[(80, 64); 4]);
+    tracked(&track(&m, &out), &out, "1 0 3 0\n");
     for t in 0..4 {
         let mask = image::open(out.join(format!("mask{t:03}.tif")))
             .unwrap()
@@ -145,23 +155,8 @@ fn a_division_the_next_frame_takes_back_is_written_as_one_cell() {
     }
     let (m, out, csv) = (tmp("parts.tif"), tmp("parts-res"), tmp("parts.csv"));
     capsule_movie(&m, &pages);
-    let run = Command::new(env!("CARGO_BIN_EXE_topocontour"))
-        .args(["track", &m.display().to_string(), "--object", "bright"])
-        .arg("--ctc")
-        .arg(&out)
-        .arg("--tracks-csv")
-        .arg(&csv)
-        .output()
-        .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    assert_eq!(
-        std::fs::read_to_string(out.join("res_track.txt")).unwrap(),
-        "1 0 6 0\n"
-    );
+    let run = track_with(&m, &out, &[Path::new("--tracks-csv"), &csv]);
+    tracked(&run, &out, "1 0 6 0\n");
     let mask = image::open(out.join("mask003.tif")).unwrap().into_luma16();
     assert_eq!(mask.get_pixel(37, 32).0[0], 1);
     assert_eq!(mask.get_pixel(59, 32).0[0], 1);

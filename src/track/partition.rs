@@ -240,15 +240,7 @@ impl Cells {
         if d <= 0.0 {
             return None;
         }
-        let shift = Point::new(self.origin.0 as f64, self.origin.1 as f64);
-        let mut ring: Vec<Point> = basin_outline(&merged, 1, at, self.w, self.h)?
-            .into_iter()
-            .map(|p| p + shift)
-            .collect();
-        if crate::geometry::signed_area(&ring) < 0.0 {
-            ring.reverse();
-        }
-        Some(ring)
+        self.outline(&merged, 1, at)
     }
 
     /// The marker watershed of the group (see the module doc).
@@ -283,6 +275,12 @@ impl Cells {
         if d <= 0.0 {
             return None;
         }
+        self.outline(basin, l, at)
+    }
+
+    /// The outline of label `l` of the window raster `basin`, followed from its pixel
+    /// `at`, in frame coordinates, region on the left.
+    fn outline(&self, basin: &[u32], l: u32, at: usize) -> Option<Vec<Point>> {
         let shift = Point::new(self.origin.0 as f64, self.origin.1 as f64);
         let mut ring: Vec<Point> = basin_outline(basin, l, at, self.w, self.h)?
             .into_iter()
