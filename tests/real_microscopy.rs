@@ -65,7 +65,7 @@ proptest! {
     fn decision_level_matches_brute_force(
         w in 1usize..24, h in 1usize..24, r in 1usize..5, seed in any::<u64>(),
         object in 0.0f64..1.0, background in 0.0f64..1.0, floor in 0.0f64..0.2,
-        reach in 1.0f64..3.0, share in 0.3f64..0.6,
+        reach in 1.0f64..3.0, share in 0.3f64..0.6, background_box in prop::sample::select(vec![0.5, 1.0]),
     ) {
         let mut s = seed | 1;
         let f = image(w, h, |_, _| {
@@ -73,10 +73,12 @@ proptest! {
             (s % 1000) as f32 / 1000.0
         });
         let model = IntensityModel { object, background };
-        let d = decision_field(&f, r, &model, &LevelRule { floor, reach, share });
+        let d = decision_field(&f, r, &model, &LevelRule { floor, reach, share, background_box });
         let bright = object >= background;
         let sign = if bright { 1.0 } else { -1.0 };
-        let mean = box_mean(&f, r);
+        // The background's boxes: half-side r, or ⌈r/2⌉.
+        let rb = if background_box < 1.0 { r.div_ceil(2) } else { r };
+        let mean = box_mean(&f, rb);
         // The object's extreme is taken over half the radius (rounded up), on the image
         // blurred once more by [1 2 1] / 4.
         let re = r.div_ceil(2);
@@ -84,7 +86,7 @@ proptest! {
         let extreme = box_extreme(&fb, re, bright);
         for y in 0..h {
             for x in 0..w {
-                let win = window(&f, x, y, r);
+                let win = window(&f, x, y, rb);
                 let m = win.iter().map(|&v| v as f64).sum::<f64>() / win.len() as f64;
                 prop_assert!((mean.at(x, y) as f64 - m).abs() < 1e-5);
                 let e = window(&fb, x, y, re).iter().copied().fold(if bright { f32::MIN } else { f32::MAX },

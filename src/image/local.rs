@@ -21,9 +21,11 @@
 //!   step). Inside a large object e is the object itself, so nothing inside reads as
 //!   background (a local *mean* would put half of a large object's interior below its
 //!   own level).
-//! - b(x) is the emptiest (2r+1)² box mean within 3r of x, never less object-like than
+//! - b(x) is the emptiest (2ρ+1)² box mean within 3r of x, never less object-like than
 //!   the global background: uneven light raises it, a halo beside an object does not
-//!   lower it. The box mean keeps the noise from biasing the minimum.
+//!   lower it. The box mean keeps the noise from biasing the minimum. Its half-side ρ is
+//!   r, or ⌈r/2⌉ in phase contrast and bright field ([`background_box`]), where crowded
+//!   cells leave only thin lines of background between them.
 //! - floor: [`FLOOR_SIGMAS`] deviations of the pixel noise (flat background never reads
 //!   as object), and a share of the global contrast that depends on the modality (see
 //!   [`floor`]).
@@ -96,6 +98,23 @@ pub fn reach(modality: Modality) -> f64 {
 /// three times the mean half-width it still reaches background.
 pub const BACKGROUND_REACH: usize = 3;
 
+/// The half-side of the boxes whose means b(x) is the emptiest of, as a share of the
+/// object radius r: a whole radius, except in phase contrast and bright field, where it
+/// is half. There a colony's cells crowd with only their bright halo lines, 2–3 px wide,
+/// between them, so no box of a whole radius within reach is background: the level fell
+/// to the global one while a crowded cell's inside is brighter (the colony's glow), and
+/// the evolution kept only the cells' cores, thin pieces that split. The cap at the
+/// global background bounds what the smaller box's noise can lift b by. On 140-cell
+/// colonies and the real phase-contrast colonies (docs/decisions.md, 2026-12-05).
+/// Fluorescence keeps the whole radius: its touching nuclei have glow, not background,
+/// between them.
+pub fn background_box(modality: Modality) -> f64 {
+    match modality {
+        Modality::PhaseContrast | Modality::Brightfield => 0.5,
+        _ => 1.0,
+    }
+}
+
 /// The local decision level T(x) of one pyramid level, with the local half contrast
 /// |T(x) − b(x)| that scales the region score (so a dim object's edge pulls as hard as a
 /// bright one's, and flat background far from the level shrinks a wrap at full speed).
@@ -119,6 +138,9 @@ pub struct LevelRule {
     /// Where between background and object the level lies, as a share of the local
     /// contrast ([`share`]).
     pub share: f64,
+    /// The background boxes' half-side as a share of the object radius
+    /// ([`background_box`]).
+    pub background_box: f64,
 }
 
 impl LevelRule {
@@ -128,6 +150,7 @@ impl LevelRule {
             floor: floor(fine, model, modality),
             reach: reach(modality),
             share: share(modality),
+            background_box: background_box(modality),
         }
     }
 }
@@ -158,12 +181,14 @@ pub fn decision_field(
         floor,
         reach,
         share,
+        background_box,
     } = *rule;
     let bright = model.object >= model.background;
     let s = if bright { 1.0 } else { -1.0 };
     let mut t = box_extreme_in(image.blur(&[0.25, 0.5, 0.25]), r.div_ceil(2), bright);
     // The emptiest r-box within reach: a mean first, so that noise does not bias it.
-    let mut half = box_extreme_in(box_mean(image, r), BACKGROUND_REACH * r, !bright);
+    let rb = ((r as f64 * background_box).ceil() as usize).max(1);
+    let mut half = box_extreme_in(box_mean(image, rb), BACKGROUND_REACH * r, !bright);
     let tg = model.threshold();
     for (v, h) in t.data.iter_mut().zip(half.data.iter_mut()) {
         // Background may be raised by uneven light (more object-like than the global

@@ -14,8 +14,10 @@
 //! inside a cell, 1 outside; [`SEPTUM_WIDENS`]) and by how sharply the outline turns
 //! inward at the chord's ends ([`NOTCH_WIDENS`]): caps meeting at half the width are cut,
 //! a mother's waist as narrow is not, a full-width contact needs a full line and sharp
-//! corners (rods side by side that turned apart). A straight or bent single rod, a
-//! kidney and an ellipse have no such neck and no line along it.
+//! corners (rods side by side that turned apart). A neck wider than [`WIDE_NECK`] of
+//! the width needs a line whatever its corners: in a crowded colony neighbours press
+//! notches into a rod's outline. A straight or bent single rod, a kidney and an ellipse
+//! have no such neck and no line along it.
 //!
 //! A lobe is a rod when it is elongated ([`MIN_LOBE_ASPECT`]), or stubby
 //! ([`MIN_STUB_ASPECT`]) with its sister of one size: a wide rod's daughters are born
@@ -63,6 +65,16 @@ pub const SEPTUM_WIDENS: f64 = 0.6;
 /// at its two ends (`notch_turn`): two caps just meeting turn it by about 1.6 rad
 /// together, a constricting mother's smooth waist by about 0.6.
 pub const NOTCH_WIDENS: f64 = 0.475;
+
+/// A neck wider than this share of the thinner rod's width is cut only with a line
+/// along it ([`WIDE_NECK_LINE`]), however sharply the outline turns at its ends: sisters
+/// at birth meet over 0.37–0.63 of their width (10th to 90th percentile), while a rod
+/// whose crowded neighbours press notches into its outline showed necks of 0.77–0.96
+/// widths with hardly any line (docs/decisions.md, 2026-12-05).
+pub const WIDE_NECK: f64 = 0.7;
+
+/// The least septum share along a neck wider than [`WIDE_NECK`] for a cut.
+pub const WIDE_NECK_LINE: f64 = 0.3;
 
 /// Each lobe at least this elongated (major over minor axis of its second moments): a
 /// rod. A nucleus pinches into round lobes, and the contour splits it by itself when
@@ -329,7 +341,9 @@ pub fn neck_cut_along(
         return ok.then_some((a, b));
     }
     let turn = notch_turn(ring, i, width) + notch_turn(ring, j, width);
-    (d < (NARROW + SEPTUM_WIDENS * line + NOTCH_WIDENS * turn) * width).then_some((a, b))
+    let cut = d < (NARROW + SEPTUM_WIDENS * line + NOTCH_WIDENS * turn) * width
+        && (d <= WIDE_NECK * width || line >= WIDE_NECK_LINE);
+    cut.then_some((a, b))
 }
 
 /// How far the outline turns inward (radians, ≥ 0) at `ring[k]`: the angle between the
