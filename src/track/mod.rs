@@ -81,6 +81,16 @@ pub const MIN_DAUGHTER_SHARE: f64 = 0.2;
 /// shred of her contour.
 pub const MIN_CLAIMED_SHARE: f64 = 0.05;
 
+/// A frame after the first evolves through the coarse pyramid levels only when the
+/// median half-width (2A/P) of the last frame's cells is at least this many pixels (2.35
+/// at half resolution). Synthetic rods 6–7.5 px wide, whose outlines' median is 4.2–4.5
+/// over a movie, broke up at the coarse level (TRA 0.87, division F1 0.44 on three
+/// movies; at full resolution only, 0.96 and 0.70); rods 8–10 px wide (5.2–5.7 over a
+/// movie, 4.7 at the least in a frame) keep it, which carries a moved cell: at full
+/// resolution only their division F1 fell from 0.91 to 0.88 (docs/decisions.md,
+/// 2026-12-05).
+pub const COARSE_MIN_HALF_WIDTH: f64 = 4.7;
+
 /// How tracking runs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TrackSettings {
@@ -94,7 +104,8 @@ pub struct TrackSettings {
     pub new_cells: bool,
     /// Pyramid levels a frame after the first evolves through (frame 0 uses the full
     /// pyramid of its parameters): 1 is the full resolution only, each more level
-    /// carries a contour over a move twice as large.
+    /// carries a contour over a move twice as large. Thin cells use one
+    /// ([`COARSE_MIN_HALF_WIDTH`]).
     pub levels: usize,
     /// Look for new cells at least every this many frames while some object area is
     /// left that no cell covers, and on any frame where that area grew since the last
@@ -458,7 +469,7 @@ impl Tracker {
         let mut params = self.settings.params.clone();
         if self.frame > 0 {
             let side = image.width.min(image.height);
-            params.coarsest_side = (side >> self.settings.levels.max(1).saturating_sub(1)).max(1);
+            params.coarsest_side = (side >> self.levels().saturating_sub(1)).max(1);
         }
         let mut ev = match Evolver::new(image, shapes, params) {
             Ok(ev) => ev,
@@ -489,6 +500,16 @@ impl Tracker {
         }
         pieces.iter_mut().for_each(drop_shreds);
         Ok((pieces, ev.frames(), Some(ev.image().clone())))
+    }
+
+    /// The pyramid levels the next frame evolves through: the settings', or the full
+    /// resolution only for thin cells ([`COARSE_MIN_HALF_WIDTH`]).
+    fn levels(&self) -> usize {
+        if !self.live.is_empty() && half_width(&self.live) < COARSE_MIN_HALF_WIDTH {
+            1
+        } else {
+            self.settings.levels.max(1)
+        }
     }
 
     /// `groups` without the cells that do not stand out from their surroundings
@@ -618,10 +639,56 @@ pub(crate) fn object(ring: Vec<Point>) -> TrackedObject {
     }
 }
 
+/// The median half-width 2A/P (area over perimeter: a disk's radius, about half a long
+/// rod's width) of the cells `live`; 0 without any.
+fn half_width(live: &[(u32, Vec<Point>)]) -> f64 {
+    let mut hw: Vec<f64> = live
+        .iter()
+        .map(|(_, r)| {
+            let p: f64 = (0..r.len()).map(|k| r[k].dist(r[(k + 1) % r.len()])).sum();
+            2.0 * crate::geometry::signed_area(r).abs() / p.max(1e-9)
+        })
+        .collect();
+    hw.sort_by(f64::total_cmp);
+    hw.get(hw.len() / 2).copied().unwrap_or(0.0)
+}
+
 /// Object pixels no cell of `evolved` covers (see [`free_object`]).
 fn leftover(evolved: &Evolved, w: usize, h: usize) -> usize {
     evolved
         .2
         .as_deref()
         .map_or(0, |m| free_object(m, &labels_of(&evolved.0, w, h)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A rod along x from `x0` to `x1` at y = 20, `width` across, as a ring.
+    fn rod(x0: f64, x1: f64, width: f64) -> Vec<Point> {
+        let r = 0.5 * width;
+        let mut ring = Vec::new();
+        for k in 0..=16 {
+            let a = -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
+            ring.push(Point::new(x1 + r * a.cos(), 20.0 + r * a.sin()));
+        }
+        for k in 0..=16 {
+            let a = std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
+            ring.push(Point::new(x0 + r * a.cos(), 20.0 + r * a.sin()));
+        }
+        ring
+    }
+
+    #[test]
+    fn thin_cells_skip_the_coarse_levels() {
+        let mut t = Tracker::new(TrackSettings::new(Params::default()), Vec::new());
+        assert_eq!(t.levels(), 2, "no cells yet");
+        // Rods 5 px wide (2A/P 4.0) are thin, 9 px wide (6.7) are not.
+        t.live = (0..5).map(|k| (k, rod(10.0, 22.0, 5.0))).collect();
+        assert!(half_width(&t.live) < COARSE_MIN_HALF_WIDTH);
+        assert_eq!(t.levels(), 1);
+        t.live = (0..5).map(|k| (k, rod(10.0, 24.0, 9.0))).collect();
+        assert_eq!(t.levels(), 2);
+    }
 }
