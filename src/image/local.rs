@@ -186,7 +186,7 @@ pub fn decision_field(
     let bright = model.object >= model.background;
     let s = if bright { 1.0 } else { -1.0 };
     let mut t = box_extreme_in(image.blur(&[0.25, 0.5, 0.25]), r.div_ceil(2), bright);
-    // The emptiest r-box within reach: a mean first, so that noise does not bias it.
+    // The emptiest ρ-box within reach: a mean first, so that noise does not bias it.
     let rb = ((r as f64 * background_box).ceil() as usize).max(1);
     let mut half = box_extreme_in(box_mean(image, rb), BACKGROUND_REACH * r, !bright);
     let tg = model.threshold();

@@ -521,6 +521,60 @@ mod tests {
     }
 
     #[test]
+    fn a_wide_neck_with_sharp_corners_needs_a_line() {
+        // A rod 9 px wide with a sharp notch 0.9 px deep pressed into each side at x = 27
+        // (as crowded neighbours press into a rod): a neck of 0.8 widths whose outline
+        // turns sharply at its ends. On a flat image, no line: not cut; with the image
+        // background-like along it: cut.
+        let (top, bottom) = (15.5, 24.5);
+        let notch = |y: f64, inward: f64| {
+            [(26.1, y), (27.0, y + inward), (27.9, y)].map(|(x, y)| Point::new(x, y))
+        };
+        let mut corners = vec![Point::new(10.0, bottom)];
+        corners.extend(notch(bottom, -0.9));
+        corners.push(Point::new(44.0, bottom));
+        for k in 1..16 {
+            let a = std::f64::consts::FRAC_PI_2 - std::f64::consts::PI * k as f64 / 16.0;
+            corners.push(Point::new(44.0 + 4.5 * a.cos(), 20.0 + 4.5 * a.sin()));
+        }
+        corners.push(Point::new(44.0, top));
+        corners.extend(notch(top, 0.9).into_iter().rev());
+        corners.push(Point::new(10.0, top));
+        for k in 1..16 {
+            let a = -std::f64::consts::FRAC_PI_2 - std::f64::consts::PI * k as f64 / 16.0;
+            corners.push(Point::new(10.0 + 4.5 * a.cos(), 20.0 + 4.5 * a.sin()));
+        }
+        // Vertices every half pixel or closer, as evolved outlines have.
+        let mut ring = Vec::new();
+        for (k, &p) in corners.iter().enumerate() {
+            let q = corners[(k + 1) % corners.len()];
+            let steps = (p.dist(q) / 0.5).ceil().max(1.0) as usize;
+            ring.extend((0..steps).map(|s| p + (q - p) * (s as f64 / steps as f64)));
+        }
+        if signed_area(&ring) < 0.0 {
+            ring.reverse();
+        }
+        assert!(neck_cut(&ring, &flat()).is_none());
+        // The cell at 1, the background and a line across the neck (x 26–27) at 0.
+        let lined = Field::new(
+            64,
+            40,
+            (0..64 * 40)
+                .map(|i| {
+                    let p = Point::new((i % 64) as f64 + 0.5, (i / 64) as f64 + 0.5);
+                    let cell = winding_number(&ring, p) != 0 && !(26..28).contains(&(i % 64));
+                    if cell {
+                        1.0
+                    } else {
+                        0.0
+                    }
+                })
+                .collect(),
+        );
+        assert!(neck_cut(&ring, &lined).is_some());
+    }
+
+    #[test]
     fn a_mothers_gentle_waist_is_not_cut_and_a_deep_one_is() {
         // A rod of width 9 whose waist narrows smoothly (a Gaussian over 0.45 widths, as a
         // constricting mother): at 0.55 of the width the outline bends gently, unlike two
