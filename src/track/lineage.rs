@@ -61,7 +61,7 @@ impl Lineage {
 
     /// Track `label` is seen in `frame`.
     pub fn extend(&mut self, label: u32, frame: usize) {
-        if let Ok(k) = self.tracks.binary_search_by_key(&label, |t| t.label) {
+        if let Some(k) = self.index(label) {
             let t = &mut self.tracks[k];
             t.last = t.last.max(frame);
         }
@@ -98,8 +98,12 @@ impl Lineage {
 
     /// The track of `label`.
     pub fn get(&self, label: u32) -> Option<&Track> {
-        let k = self.tracks.binary_search_by_key(&label, |t| t.label).ok()?;
-        self.tracks.get(k)
+        self.tracks.get(self.index(label)?)
+    }
+
+    /// Where track `label` is in [`Lineage::tracks`] (sorted by label, with gaps).
+    fn index(&self, label: u32) -> Option<usize> {
+        self.tracks.binary_search_by_key(&label, |t| t.label).ok()
     }
 
     /// `res_track.txt` of the Cell Tracking Challenge: `L B E P` per track.

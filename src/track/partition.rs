@@ -215,6 +215,25 @@ impl Cells {
                 .is_some_and(|&(d, _)| d > 0.0 && self.dist.data[i] >= CORE * d)
     }
 
+    /// Per cell with a core, its core's mean score.
+    fn core_means(&self) -> HashMap<u32, f64> {
+        let mut sums: HashMap<u32, (f64, usize)> = HashMap::new();
+        for i in (0..self.labels.len()).filter(|&i| self.in_core(i)) {
+            let c = sums.entry(self.labels[i]).or_default();
+            c.0 += self.score.data[i] as f64;
+            c.1 += 1;
+        }
+        sums.into_iter()
+            .map(|(l, (s, k))| (l, s / k as f64))
+            .collect()
+    }
+
+    /// The width of the thinner of cells `a` and `b`: twice its deepest inside distance.
+    fn thinner(&self, a: u32, b: u32) -> f64 {
+        let depth = |l: u32| self.deepest.get(&l).map_or(0.0, |d| d.0 as f64);
+        2.0 * depth(a).min(depth(b))
+    }
+
     /// Whether cell `l` has a core (some pixel not on its border).
     fn has_core(&self, l: u32) -> bool {
         self.deepest.get(&l).is_some_and(|&(d, _)| d > 0.0)
@@ -399,14 +418,7 @@ pub fn joins(labels: &[u32], model: &ImageModel) -> Vec<u32> {
     for (members, b) in groups(labels, w, h) {
         let cells = Cells::new(labels, model, &members, b);
         // Per label, its core's mean score; per pair, the contact's sum and pixels.
-        let mut core: HashMap<u32, (f64, usize)> = HashMap::new();
-        for i in 0..cells.labels.len() {
-            if cells.in_core(i) {
-                let c = core.entry(cells.labels[i]).or_default();
-                c.0 += cells.score.data[i] as f64;
-                c.1 += 1;
-            }
-        }
+        let core = cells.core_means();
         let mut pairs: std::collections::BTreeMap<(u32, u32), (f64, usize)> = Default::default();
         for (i, j) in contacts(&cells.labels, cells.w, cells.h) {
             let (a, b) = (cells.labels[i], cells.labels[j]);
@@ -414,14 +426,12 @@ pub fn joins(labels: &[u32], model: &ImageModel) -> Vec<u32> {
             e.0 += 0.5 * (cells.score.data[i] + cells.score.data[j]) as f64;
             e.1 += 1;
         }
-        let mean = |l: u32| core.get(&l).filter(|c| c.1 > 0).map(|&(s, k)| s / k as f64);
-        let depth = |l: u32| cells.deepest.get(&l).map_or(0.0, |d| d.0 as f64);
         for ((a, b), (sum, count)) in pairs {
-            let (Some(ca), Some(cb)) = (mean(a), mean(b)) else {
+            let (Some(ca), Some(cb)) = (core.get(&a), core.get(&b)) else {
                 continue;
             };
-            let weaker = ca.min(cb);
-            let thinner = 2.0 * depth(a).min(depth(b));
+            let weaker = ca.min(*cb);
+            let thinner = cells.thinner(a, b);
             let seamless = weaker > 0.0 && sum / count as f64 >= JOIN_SHARE * weaker;
             if count as f64 >= JOIN_CONTACT * thinner && (seamless || cells.one_body(a, b)) {
                 let (ra, rb) = (find(&mut root, a), find(&mut root, b));
@@ -496,17 +506,9 @@ pub fn rejoined(labels: &[u32], a: u32, b: u32, model: &ImageModel) -> Option<Ve
     }
     let mut cells = Cells::new(labels, model, &[a.min(b), a.max(b)], bx);
     let (w, h) = (cells.w, cells.h);
-    let mean_core = |l: u32| {
-        let (sum, n) = (0..w * h)
-            .filter(|&i| cells.labels[i] == l && cells.in_core(i))
-            .fold((0.0, 0usize), |(s, n), i| {
-                (s + cells.score.data[i] as f64, n + 1)
-            });
-        (n > 0).then(|| sum / n as f64)
-    };
-    let weaker = mean_core(a)?.min(mean_core(b)?);
-    let depth = |l: u32| cells.deepest.get(&l).map_or(0.0, |d| d.0 as f64);
-    let thinner = 2.0 * depth(a).min(depth(b));
+    let core = cells.core_means();
+    let weaker = core.get(&a)?.min(*core.get(&b)?);
+    let thinner = cells.thinner(a, b);
     // Where they meet: the pixels of each run from one to the other and the gap between.
     let view = model.level(0);
     let frame_index = |i: usize| (cells.origin.1 + i / w) * fw + cells.origin.0 + i % w;
