@@ -99,7 +99,11 @@ impl Movie {
             height: 0,
         };
         let mut frames = 0;
-        for (t, frame) in movie.frames()?.enumerate() {
+        // Every page decoded once here, so a bad one stops the run before any output; not
+        // normalised, which only the run needs.
+        let mut pages = movie.frames()?;
+        pages.normalised = false;
+        for (t, frame) in pages.enumerate() {
             let f = frame?;
             if t == 0 {
                 (movie.width, movie.height) = (f.width, f.height);
@@ -178,6 +182,7 @@ impl Movie {
             reader,
             name: self.name.clone(),
             next: 0,
+            normalised: true,
         })
     }
 }
@@ -211,6 +216,8 @@ pub struct Frames {
     reader: Reader,
     name: String,
     next: usize,
+    /// Each frame normalised as it is read (false: as decoded, for [`Movie::open`]'s check).
+    normalised: bool,
 }
 
 impl Iterator for Frames {
@@ -241,7 +248,9 @@ impl Iterator for Frames {
         };
         self.next = if frame.is_ok() { t + 1 } else { MAX_FRAMES };
         Some(frame.map(|mut f| {
-            normalise(&mut f);
+            if self.normalised {
+                normalise(&mut f);
+            }
             f
         }))
     }
