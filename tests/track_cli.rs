@@ -105,6 +105,51 @@ fn bad_movies_are_refused_before_any_output() {
     assert!(!out.exists());
 }
 
+#[test]
+fn outputs_are_checked_before_tracking_and_a_reused_folder_keeps_no_old_masks() {
+    // An overlay into a folder that does not exist: refused before anything is written.
+    let (m, out) = (tmp("checked.tif"), tmp("checked-res"));
+    movie(&m, &[(80, 64); 4]);
+    let nowhere = tmp("no-such-folder").join("o.png");
+    for frame in [Some("3"), None] {
+        let mut more: Vec<&Path> = vec![Path::new("--overlay"), &nowhere];
+        if let Some(f) = frame {
+            more.extend([Path::new("--overlay-frame"), Path::new(f)]);
+        }
+        let run = track_with(&m, &out, &more);
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains("does not exist"), "{err}");
+        assert!(
+            !out.exists(),
+            "masks written before the overlay was refused"
+        );
+    }
+    // A folder holding a longer earlier result: its masks past this movie's end go.
+    let long = tmp("long.tif");
+    movie(&long, &[(80, 64); 6]);
+    tracked(&track(&long, &out), &out, "1 0 5 0\n");
+    std::fs::write(out.join("notes.txt"), "kept").unwrap();
+    tracked(&track(&m, &out), &out, "1 0 3 0\n");
+    let mut names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "mask000.tif",
+            "mask001.tif",
+            "mask002.tif",
+            "mask003.tif",
+            "notes.txt",
+            "res_track.txt"
+        ]
+    );
+}
+
 /// A capsule: the ends of its axis and its radius (a disk when they meet).
 type Capsule = ((f64, f64), (f64, f64), f64);
 

@@ -504,6 +504,7 @@ impl TopoApp {
         };
         std::fs::create_dir_all(dir).map_err(io)?;
         let (w, h) = m.movie.size();
+        let mut written = Vec::with_capacity(tr.frames.len());
         for f in &tr.frames {
             let rings: Vec<(u32, &[crate::geometry::Point])> = f
                 .objects
@@ -512,9 +513,12 @@ impl TopoApp {
                 .collect();
             let bytes = ctc::label_image(&label_raster(&rings, w, h), w, h, true)
                 .ok_or_else(|| super::AppError::Movie("more than 65,535 tracks".into()))?;
-            crate::io::write_atomic(&dir.join(ctc::mask_name(f.frame, m.movie.len())), &bytes)?;
+            let name = ctc::mask_name(f.frame, m.movie.len());
+            crate::io::write_atomic(&dir.join(&name), &bytes)?;
+            written.push(name);
         }
         crate::io::write_atomic(&dir.join("res_track.txt"), tr.lineage.ctc_text().as_bytes())?;
+        ctc::remove_stale_masks(dir, &written).map_err(io)?;
         Ok(tr.frames.len())
     }
 }

@@ -8,7 +8,7 @@
 //! succeeded. Ctrl-C stops starting new images; those already running finish and are
 //! written, the summary lists them, and the exit code is 1. Images are the folder's
 //! regular files ending in .png, .jpg, .jpeg, .tif or .tiff (not its subfolders), in
-//! name order. The output folder may be the input folder only when no output is an
+//! natural name order. The output folder may be the input folder only when no output is an
 //! image (mask, labels, overlay), which the next run would segment.
 
 use super::run::{classifier_for, evolve, RunSettings};

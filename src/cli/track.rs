@@ -23,7 +23,7 @@ use std::path::{Path, PathBuf};
 #[derive(Args, Debug, Clone)]
 pub struct TrackArgs {
     /// A multi-page TIFF (one page per time point, 8 or 16 bit) or a folder of images
-    /// (frames in name order).
+    /// (frames in natural name order: frame_2 before frame_10).
     pub movie: PathBuf,
     /// Whether cells are darker or brighter than the background.
     #[arg(long, value_enum)]
@@ -180,6 +180,15 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
     let lineage = tracker.lineage();
     if let Some(dir) = &plan.ctc {
         write(&dir.join("res_track.txt"), lineage.ctc_text().as_bytes())?;
+        let written: Vec<String> = (0..movie.len())
+            .map(|t| ctc::mask_name(t, movie.len()))
+            .collect();
+        ctc::remove_stale_masks(dir, &written).map_err(|e| {
+            bad(format!(
+                "cannot clear the old masks of {}: {e}",
+                dir.display()
+            ))
+        })?;
     }
     let mut contents = Vec::new();
     if a.json.is_some() {
@@ -257,7 +266,31 @@ fn prepare(a: &TrackArgs) -> Result<Plan, Failure> {
         .filter_map(|p| p.as_deref())
         .collect();
     let files = OutputFiles::prepare(Some(&a.movie), &files).map_err(|e| bad(e.to_string()))?;
+    if let Some(out) = &a.overlay {
+        // Its folder, name and kind checked now, not after the frames before it are
+        // tracked (a sequence by its first file; its temporaries go with the check).
+        let first = match a.overlay_frame {
+            Some(_) => out.clone(),
+            None => numbered(out, 0, 1),
+        };
+        let mut all: Vec<&Path> = vec![&first];
+        all.extend(a.json.as_deref());
+        all.extend(a.tracks_csv.as_deref());
+        OutputFiles::prepare(Some(&a.movie), &all).map_err(|e| bad(format!("--overlay: {e}")))?;
+    }
     if let Some(dir) = &a.ctc {
+        let same = |p: &Path, q: &Path| {
+            p.canonicalize()
+                .ok()
+                .zip(q.canonicalize().ok())
+                .is_some_and(|(p, q)| p == q)
+        };
+        if same(dir, &a.movie) {
+            return Err(bad(format!(
+                "--ctc {}: that is the movie's own folder; give another folder for the result",
+                dir.display()
+            )));
+        }
         if dir.exists() && !dir.is_dir() {
             return Err(bad(format!(
                 "--ctc {}: not a folder (the result is a folder of masks)",

@@ -13,7 +13,7 @@ pub const SUMMARY_HEADER: &str =
     "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,mean_intensity,contour\n";
 
 /// The images of `dir` (regular files ending in .png, .jpg, .jpeg, .tif or .tiff; not
-/// its subfolders), in name order.
+/// its subfolders), in natural name order (`frame_2` before `frame_10`).
 pub fn list_images(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     let mut images: Vec<PathBuf> = std::fs::read_dir(dir)?
         .flatten()
@@ -27,7 +27,9 @@ pub fn list_images(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
             })
         })
         .collect();
-    images.sort();
+    // Natural order, as a file browser shows them: frame_2 before frame_10 (numbers are
+    // rarely zero-padded), so a folder of frames is a movie in the order it was taken.
+    images.sort_by(|a, b| natord::compare(&file_name(a), &file_name(b)));
     Ok(images)
 }
 
@@ -146,6 +148,29 @@ mod tests {
 
     fn paths(names: &[&str]) -> Vec<PathBuf> {
         names.iter().map(PathBuf::from).collect()
+    }
+
+    #[test]
+    fn images_are_listed_in_natural_order() {
+        let dir = tempfile::tempdir().unwrap();
+        for n in [
+            "frame_10.png",
+            "frame_2.png",
+            "frame_1.png",
+            "notes.txt",
+            "frame_0.png",
+        ] {
+            std::fs::write(dir.path().join(n), b"").unwrap();
+        }
+        let names: Vec<String> = list_images(dir.path())
+            .unwrap()
+            .iter()
+            .map(|p| file_name(p))
+            .collect();
+        assert_eq!(
+            names,
+            ["frame_0.png", "frame_1.png", "frame_2.png", "frame_10.png"]
+        );
     }
 
     #[test]

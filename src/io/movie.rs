@@ -1,5 +1,5 @@
 //! A movie: the pages of a multi-page TIFF (8 or 16 bit, one page per time point), or the
-//! images of a folder in name order.
+//! images of a folder in natural name order (`frame_2` before `frame_10`).
 //!
 //! [`Movie::open`] reads every frame once before anything else happens, so a bad movie
 //! (one frame, frames of different sizes, a frame that does not decode) is refused with
@@ -68,7 +68,7 @@ pub enum MovieError {
 enum Source {
     /// Pages of one TIFF file.
     Stack(PathBuf),
-    /// Image files, in name order.
+    /// Image files, in natural name order.
     Files(Vec<PathBuf>),
 }
 
@@ -195,7 +195,7 @@ fn decode_error(name: &str, reason: String) -> MovieError {
     .into()
 }
 
-/// The image files of a folder, in name order (as `batch` lists them).
+/// The image files of a folder, in natural name order (as `batch` lists them).
 fn image_files(dir: &Path) -> Result<Vec<PathBuf>, MovieError> {
     super::folder::list_images(dir).map_err(|source| {
         LoadError::Io {

@@ -92,7 +92,7 @@ fn files_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
             cx,
             ui,
             "Open movie folder…",
-            "a folder of images, frames in name order",
+            "a folder of images, frames in natural name order (frame_2 before frame_10)",
             Command::OpenMovieDialog(true),
         );
         ui.separator();

@@ -16,6 +16,29 @@ pub fn mask_name(t: usize, frames: usize) -> String {
     format!("mask{t:0digits$}.tif")
 }
 
+/// Removes the masks of an earlier result from the CTC folder `dir`: regular files named
+/// `mask` + digits + `.tif` other than `written` (this run's, by name). A folder used
+/// before would otherwise keep frames past this movie's end (or of another digit count)
+/// beside the new ones, and be no valid result. Called once the new result is written;
+/// the number removed.
+pub fn remove_stale_masks(dir: &std::path::Path, written: &[String]) -> std::io::Result<usize> {
+    let is_mask = |n: &str| {
+        n.strip_prefix("mask")
+            .and_then(|r| r.strip_suffix(".tif"))
+            .is_some_and(|d| d.len() >= 3 && d.bytes().all(|b| b.is_ascii_digit()))
+    };
+    let mut removed = 0;
+    for entry in std::fs::read_dir(dir)? {
+        let entry = entry?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if is_mask(&name) && !written.contains(&name) && entry.file_type()?.is_file() {
+            std::fs::remove_file(entry.path())?;
+            removed += 1;
+        }
+    }
+    Ok(removed)
+}
+
 /// A label raster as a 16-bit TIFF (`tiff`) or PNG; `None` beyond 65,535 labels.
 pub fn label_image(labels: &[u32], width: usize, height: usize, tiff: bool) -> Option<Vec<u8>> {
     let data: Vec<u16> = labels
