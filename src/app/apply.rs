@@ -35,7 +35,7 @@ impl TopoApp {
                 // (Undo brings it back).
                 if doc.sample_wrap && matches!(s, Shape::Disk { .. }) {
                     doc.shapes.clear();
-                    self.status.notice = Some(
+                    self.status.notify(
                         "the sample's wrap rectangle made way for your seed (Undo brings it back)"
                             .into(),
                     );
@@ -79,7 +79,7 @@ impl TopoApp {
                     None => find_seeds(&img, p.0, p.1),
                 };
                 let doc = &mut self.doc;
-                self.status.notice = Some(format!("found {} objects: seeds placed", found.len()));
+                self.status.notify(format!("found {} objects: seeds placed", found.len()));
                 doc.shapes.extend(found);
                 doc.found_seeds = true;
             }
@@ -105,7 +105,7 @@ impl TopoApp {
         if let Some(e) = failed {
             self.status.error = Some(e.into());
         } else if self.doc.run.is_some() {
-            self.status.notice = Some(format!(
+            self.status.notify(format!(
                 "forces changed at frame {shown}: the run goes on from here with them"
             ));
         }

@@ -162,13 +162,13 @@ impl TopoApp {
         match settings.filter(|_| t + 1 < len) {
             Some(s) => {
                 self.spawn_tracking(Tracker::resume(s, lineage, &frame, w, h), t + 1, id);
-                self.status.notice = Some(format!(
+                self.status.notify(format!(
                     "frame {t} corrected ({summary}): frames {}–{} are tracked again from it",
                     t + 1,
                     len - 1
                 ));
             }
-            None => self.status.notice = Some(format!("frame {t} corrected ({summary})")),
+            None => self.status.notify(format!("frame {t} corrected ({summary})")),
         }
     }
 

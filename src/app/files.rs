@@ -112,7 +112,7 @@ impl TopoApp {
                 }
             }
             Command::Export(kind, path) => match self.export(kind, &path) {
-                Ok(()) => self.status.notice = Some(format!("wrote {}", path.display())),
+                Ok(()) => self.status.notify(format!("wrote {}", path.display())),
                 Err(e) => self.status.error = Some(e),
             },
             Command::ExportDialog(kind) => {
@@ -138,7 +138,7 @@ impl TopoApp {
                 }
             }
             Command::SaveSession(p) => match self.save_session(&p) {
-                Ok(()) => self.status.notice = Some(format!("session saved to {}", p.display())),
+                Ok(()) => self.status.notify(format!("session saved to {}", p.display())),
                 Err(e) => self.status.error = Some(e),
             },
             Command::OpenSession(p) => {

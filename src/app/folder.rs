@@ -38,26 +38,26 @@ impl TopoApp {
     /// Starts segmenting every image of `dir` in the background.
     pub(super) fn apply_to_folder(&mut self, dir: &Path) {
         if self.jobs.folder.is_some() {
-            self.status.notice = Some("a folder is already being segmented".into());
+            self.status.notify("a folder is already being segmented".into());
             return;
         }
         let images = match list_images(dir) {
             Ok(i) if !i.is_empty() => i,
             Ok(_) => {
-                self.status.notice = Some(format!(
+                self.status.notify(format!(
                     "{} holds no PNG, JPEG or TIFF image",
                     dir.display()
                 ));
                 return;
             }
             Err(e) => {
-                self.status.notice = Some(format!("cannot read {}: {e}", dir.display()));
+                self.status.notify(format!("cannot read {}: {e}", dir.display()));
                 return;
             }
         };
         let out = dir.join("topocontour");
         if let Err(e) = std::fs::create_dir_all(&out) {
-            self.status.notice = Some(format!("cannot create {}: {e}", out.display()));
+            self.status.notify(format!("cannot create {}: {e}", out.display()));
             return;
         }
         let doc = &self.doc;
@@ -109,7 +109,7 @@ impl TopoApp {
             out,
             handle: Some(handle),
         });
-        self.status.notice = Some(format!("segmenting {total} images of {}", dir.display()));
+        self.status.notify(format!("segmenting {total} images of {}", dir.display()));
     }
 
     /// Collects a finished folder run: what it wrote, in the status bar.
@@ -134,9 +134,9 @@ impl TopoApp {
                 if let Some(first) = failed.first() {
                     text.push_str(&format!("; {} failed, first: {first}", failed.len()));
                 }
-                self.status.notice = Some(text);
+                self.status.notify(text);
             }
-            _ => self.status.notice = Some("the folder run stopped unexpectedly".into()),
+            _ => self.status.notify("the folder run stopped unexpectedly".into()),
         }
     }
 }

@@ -19,7 +19,7 @@ impl TopoApp {
         self.doc.shown = at;
         let waiting = run.waiting_edits();
         if later > 0 && waiting > 0 {
-            self.status.notice = Some(format!(
+            self.status.notify(format!(
                 "edited frame {at}: the {later} frames after it are computed again as you play, and your {waiting} later edits are made again at their frames"
             ));
         }
@@ -69,7 +69,7 @@ impl TopoApp {
         };
         let Some(doc) = back else {
             let what = if c == Command::Undo { "undo" } else { "redo" };
-            self.status.notice = Some(format!("nothing to {what}"));
+            self.status.notify(format!("nothing to {what}"));
             return;
         };
         self.doc = doc;

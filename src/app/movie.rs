@@ -166,7 +166,7 @@ impl TopoApp {
             Command::SelectTrack(t) => self.view.selected_track = t,
             Command::ExportCtc(dir) => match self.export_ctc(&dir) {
                 Ok(n) => {
-                    self.status.notice = Some(format!(
+                    self.status.notify(format!(
                         "wrote {n} masks and res_track.txt to {}",
                         dir.display()
                     ))
@@ -203,7 +203,7 @@ impl TopoApp {
         let mut doc = Document::of_image((*first).clone(), name.clone());
         doc.image = Some(first);
         self.status.error = None;
-        self.status.notice = Some(format!(
+        self.status.notify(format!(
             "{name}: {} frames; draw seeds on frame 0 (or none: automatic seeds), then Track",
             movie.len()
         ));
@@ -237,7 +237,7 @@ impl TopoApp {
 
     fn put_movie_frame(&mut self, t: usize, f: Arc<Field>) {
         if self.correction_waiting() {
-            self.status.notice = Some(
+            self.status.notify(
                 "the correction of this frame is not in the tracking yet: answer the question first".into(),
             );
             return;
@@ -275,11 +275,11 @@ impl TopoApp {
     /// seeds) and the run's parameters under the tracking engine.
     fn start_tracking(&mut self) {
         let Some(m) = &self.doc.movie else {
-            self.status.notice = Some("open a movie first (Movie ▸ Open movie…)".into());
+            self.status.notify("open a movie first (Movie ▸ Open movie…)".into());
             return;
         };
         if self.jobs.track.is_some() {
-            self.status.notice = Some("tracking is already running".into());
+            self.status.notify("tracking is already running".into());
             return;
         }
         let init = self.doc.shapes.clone();
@@ -301,14 +301,14 @@ impl TopoApp {
             self.reset_run();
         }
         self.spawn_tracking(Tracker::new(settings, init), 0, id);
-        self.status.notice = Some(format!("tracking {total} frames…"));
+        self.status.notify(format!("tracking {total} frames…"));
     }
 
     /// Tracks on from the last frame tracked (after Cancel, or Undo back to a result
     /// that was still being tracked).
     fn continue_tracking(&mut self) {
         if self.jobs.track.is_some() {
-            self.status.notice = Some("tracking is already running".into());
+            self.status.notify("tracking is already running".into());
             return;
         }
         let Some(m) = self.doc.movie.as_mut() else {
@@ -330,7 +330,7 @@ impl TopoApp {
         let (id, from) = (tr.id, last.frame + 1);
         let tracker = Tracker::resume(settings, tr.lineage.clone(), &last, w, h);
         self.spawn_tracking(tracker, from, id);
-        self.status.notice = Some(format!("tracking on from frame {from}…"));
+        self.status.notify(format!("tracking on from frame {from}…"));
     }
 
     /// Tracks the movie's frames from `from` on with `tracker` on a thread, into the
@@ -451,7 +451,7 @@ impl TopoApp {
                 tr.complete = tr.frames.len() == len;
                 tr.running = false;
             }
-            self.status.notice = Some(self.tracking_summary(done, total));
+            self.status.notify(self.tracking_summary(done, total));
         }
         if let Some(e) = failure {
             self.status.error = Some(super::AppError::Movie(e));

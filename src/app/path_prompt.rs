@@ -88,7 +88,7 @@ impl TopoApp {
             dir.join(name).display().to_string()
         };
         self.view.path_prompt = Some(PathPrompt { purpose, text });
-        self.status.notice = Some("no file chosen in a dialog: type the path instead".into());
+        self.status.notify("no file chosen in a dialog: type the path instead".into());
     }
 }
 

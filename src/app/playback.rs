@@ -76,7 +76,7 @@ impl TopoApp {
                 steps: 0,
                 play: false,
             });
-            self.status.notice = Some("preparing the image (pyramid and local statistics)…".into());
+            self.status.notify("preparing the image (pyramid and local statistics)…".into());
             return false;
         }
         let (first, second) = build();
@@ -111,7 +111,7 @@ impl TopoApp {
         }
         let p = self.jobs.preparing.take().expect("checked");
         let Ok((first, second)) = p.handle.join() else {
-            self.status.notice = Some("preparing the image failed".into());
+            self.status.notify("preparing the image failed".into());
             return;
         };
         if self.install_run(first, second) {
@@ -160,7 +160,7 @@ impl TopoApp {
             .iter()
             .any(|e| matches!(e, TopologyEvent::Merge { .. }))
         {
-            self.status.notice = Some(format!(
+            self.status.notify(format!(
                 "frame {}: two seeds merged into one object; Preserve keeps touching objects apart",
                 rec.index
             ));
@@ -197,7 +197,7 @@ impl TopoApp {
             .as_ref()
             .is_some_and(|m| m.correcting.is_some());
         if correcting && matches!(c, Command::Play | Command::Step(_) | Command::StepToEvent) {
-            self.status.notice = Some(
+            self.status.notify(
                 "this tracked frame's contours are open for correction (Edit, Brush); Track again re-runs the evolution"
                     .into(),
             );

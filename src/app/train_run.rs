@@ -29,14 +29,14 @@ impl TopoApp {
             Command::ShowProbabilities(on) => self.view.prefs.show_probabilities = on,
             Command::ClearStrokes => self.doc.train.clear(),
             Command::SaveClassifier(p) => match self.save_classifier(&p) {
-                Ok(()) => self.status.notice = Some(format!("wrote {}", p.display())),
+                Ok(()) => self.status.notify(format!("wrote {}", p.display())),
                 Err(e) => self.status.error = Some(e),
             },
             Command::LoadClassifier(p) => match crate::io::classifier::read(&p) {
                 Ok(c) => {
                     self.doc.train.loaded = Some(std::sync::Arc::new(c));
                     self.doc.train.revision = super::train::next_revision();
-                    self.status.notice = Some(format!(
+                    self.status.notify(format!(
                         "loaded {}: it applies while no strokes are painted",
                         p.display()
                     ));
@@ -128,7 +128,7 @@ impl TopoApp {
             // As the command line: a taught run keeps the classifier's objects apart.
             s.params.mode = crate::evolution::Mode::default_for(true);
             s.mode_chosen = true;
-            self.status.notice = Some(format!(
+            self.status.notify(format!(
                 "taught run: engine {} keeps touching cells apart (choose Adaptive to let them merge)",
                 s.params.mode.name()
             ));

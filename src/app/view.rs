@@ -119,3 +119,12 @@ pub struct Status {
     /// The hint on keeping touching objects apart was given (it is given once).
     pub(super) merge_hint_given: bool,
 }
+
+impl Status {
+    /// Says what just happened; an earlier error gives way to it (the newest message
+    /// is the one shown, so a success after a failure is not hidden behind it).
+    pub fn notify(&mut self, text: String) {
+        self.error = None;
+        self.notice = Some(text);
+    }
+}
