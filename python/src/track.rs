@@ -82,6 +82,19 @@ pub fn track(
                 }));
             }
             let (w, h) = (list[0].0, list[0].1);
+            // Every frame the first's size, as the CLI checks a movie before tracking.
+            if let Some((t, &(fw, fh, _))) =
+                list.iter().enumerate().find(|(_, f)| (f.0, f.1) != (w, h))
+            {
+                return Err(bad(MovieError::SizeDiffers {
+                    path: label,
+                    frame: t + 1,
+                    width: fw,
+                    height: fh,
+                    first_width: w,
+                    first_height: h,
+                }));
+            }
             let name = label.clone();
             let read = list.into_iter().map(move |(fw, fh, owned)| {
                 let mut f = field_from_samples(&name, fw, fh, owned.samples()).map_err(bad)?;

@@ -79,7 +79,8 @@ impl TopoApp {
                     None => find_seeds(&img, p.0, p.1),
                 };
                 let doc = &mut self.doc;
-                self.status.notify(format!("found {} objects: seeds placed", found.len()));
+                self.status
+                    .notify(format!("found {} objects: seeds placed", found.len()));
                 doc.shapes.extend(found);
                 doc.found_seeds = true;
             }

@@ -168,7 +168,9 @@ impl TopoApp {
                     len - 1
                 ));
             }
-            None => self.status.notify(format!("frame {t} corrected ({summary})")),
+            None => self
+                .status
+                .notify(format!("frame {t} corrected ({summary})")),
         }
     }
 

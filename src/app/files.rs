@@ -138,7 +138,9 @@ impl TopoApp {
                 }
             }
             Command::SaveSession(p) => match self.save_session(&p) {
-                Ok(()) => self.status.notify(format!("session saved to {}", p.display())),
+                Ok(()) => self
+                    .status
+                    .notify(format!("session saved to {}", p.display())),
                 Err(e) => self.status.error = Some(e),
             },
             Command::OpenSession(p) => {

@@ -38,7 +38,8 @@ impl TopoApp {
     /// Starts segmenting every image of `dir` in the background.
     pub(super) fn apply_to_folder(&mut self, dir: &Path) {
         if self.jobs.folder.is_some() {
-            self.status.notify("a folder is already being segmented".into());
+            self.status
+                .notify("a folder is already being segmented".into());
             return;
         }
         let images = match list_images(dir) {
@@ -51,13 +52,15 @@ impl TopoApp {
                 return;
             }
             Err(e) => {
-                self.status.notify(format!("cannot read {}: {e}", dir.display()));
+                self.status
+                    .notify(format!("cannot read {}: {e}", dir.display()));
                 return;
             }
         };
         let out = dir.join("topocontour");
         if let Err(e) = std::fs::create_dir_all(&out) {
-            self.status.notify(format!("cannot create {}: {e}", out.display()));
+            self.status
+                .notify(format!("cannot create {}: {e}", out.display()));
             return;
         }
         let doc = &self.doc;
@@ -109,7 +112,8 @@ impl TopoApp {
             out,
             handle: Some(handle),
         });
-        self.status.notify(format!("segmenting {total} images of {}", dir.display()));
+        self.status
+            .notify(format!("segmenting {total} images of {}", dir.display()));
     }
 
     /// Collects a finished folder run: what it wrote, in the status bar.
@@ -136,7 +140,9 @@ impl TopoApp {
                 }
                 self.status.notify(text);
             }
-            _ => self.status.notify("the folder run stopped unexpectedly".into()),
+            _ => self
+                .status
+                .notify("the folder run stopped unexpectedly".into()),
         }
     }
 }

@@ -165,12 +165,10 @@ impl TopoApp {
             Command::CloseQuestion => self.view.question = None,
             Command::SelectTrack(t) => self.view.selected_track = t,
             Command::ExportCtc(dir) => match self.export_ctc(&dir) {
-                Ok(n) => {
-                    self.status.notify(format!(
-                        "wrote {n} masks and res_track.txt to {}",
-                        dir.display()
-                    ))
-                }
+                Ok(n) => self.status.notify(format!(
+                    "wrote {n} masks and res_track.txt to {}",
+                    dir.display()
+                )),
                 Err(e) => self.status.error = Some(e),
             },
             Command::ExportCtcDialog => match self.dialog().pick_folder() {
@@ -275,7 +273,8 @@ impl TopoApp {
     /// seeds) and the run's parameters under the tracking engine.
     fn start_tracking(&mut self) {
         let Some(m) = &self.doc.movie else {
-            self.status.notify("open a movie first (Movie ▸ Open movie…)".into());
+            self.status
+                .notify("open a movie first (Movie ▸ Open movie…)".into());
             return;
         };
         if self.jobs.track.is_some() {
@@ -330,7 +329,8 @@ impl TopoApp {
         let (id, from) = (tr.id, last.frame + 1);
         let tracker = Tracker::resume(settings, tr.lineage.clone(), &last, w, h);
         self.spawn_tracking(tracker, from, id);
-        self.status.notify(format!("tracking on from frame {from}…"));
+        self.status
+            .notify(format!("tracking on from frame {from}…"));
     }
 
     /// Tracks the movie's frames from `from` on with `tracker` on a thread, into the

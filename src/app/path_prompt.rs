@@ -88,7 +88,8 @@ impl TopoApp {
             dir.join(name).display().to_string()
         };
         self.view.path_prompt = Some(PathPrompt { purpose, text });
-        self.status.notify("no file chosen in a dialog: type the path instead".into());
+        self.status
+            .notify("no file chosen in a dialog: type the path instead".into());
     }
 }
 

@@ -76,7 +76,8 @@ impl TopoApp {
                 steps: 0,
                 play: false,
             });
-            self.status.notify("preparing the image (pyramid and local statistics)…".into());
+            self.status
+                .notify("preparing the image (pyramid and local statistics)…".into());
             return false;
         }
         let (first, second) = build();

@@ -124,6 +124,11 @@ pub fn tracker_for(a: &TrackArgs, w: usize, h: usize) -> Result<Tracker, Failure
     if a.levels == 0 {
         return Err(bad("--levels must be at least 1"));
     }
+    if w.min(h) < 8 {
+        return Err(bad(format!(
+            "frames of {w}×{h} px are too small to track: at least 8 px a side"
+        )));
+    }
     settings.levels = a.levels;
     Ok(Tracker::new(settings, init))
 }
@@ -265,7 +270,12 @@ fn prepare(a: &TrackArgs) -> Result<Plan, Failure> {
         .into_iter()
         .filter_map(|p| p.as_deref())
         .collect();
-    let files = OutputFiles::prepare(Some(&a.movie), &files).map_err(|e| bad(e.to_string()))?;
+    let frames = movie_frames(a)?;
+    let inputs: Vec<(&Path, &'static str)> = std::iter::once((a.movie.as_path(), "movie"))
+        .chain(frames.iter().map(|f| (f.as_path(), "movie frame")))
+        .collect();
+    let files = OutputFiles::prepare_for(&inputs, &files).map_err(|e| bad(e.to_string()))?;
+    apart_from_movie(a)?;
     if let Some(out) = &a.overlay {
         // Its folder, name and kind checked now, not after the frames before it are
         // tracked (a sequence by its first file; its temporaries go with the check).
@@ -276,7 +286,7 @@ fn prepare(a: &TrackArgs) -> Result<Plan, Failure> {
         let mut all: Vec<&Path> = vec![&first];
         all.extend(a.json.as_deref());
         all.extend(a.tracks_csv.as_deref());
-        OutputFiles::prepare(Some(&a.movie), &all).map_err(|e| bad(format!("--overlay: {e}")))?;
+        OutputFiles::prepare_for(&inputs, &all).map_err(|e| bad(format!("--overlay: {e}")))?;
     }
     if let Some(dir) = &a.ctc {
         let same = |p: &Path, q: &Path| {
@@ -305,6 +315,89 @@ fn prepare(a: &TrackArgs) -> Result<Plan, Failure> {
         ctc: a.ctc.clone(),
         overlay: a.overlay.clone(),
     })
+}
+
+/// The frame files of a movie that is a folder (none for a TIFF).
+fn movie_frames(a: &TrackArgs) -> Result<Vec<PathBuf>, Failure> {
+    if !a.movie.is_dir() {
+        return Ok(Vec::new());
+    }
+    crate::io::folder::list_images(&a.movie)
+        .map_err(|e| bad(format!("cannot read {}: {e}", a.movie.display())))
+}
+
+/// The canonical folder `p` lies in (the current one for a bare name), if it exists.
+fn folder_of(p: &Path) -> Option<PathBuf> {
+    let dir = p
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    dir.canonicalize().ok()
+}
+
+/// Outputs that would land among the movie's frames or the CTC result's own files:
+/// refused before anything is tracked. A file output inside a folder movie would be read
+/// as a frame next time (or replace one); a file output or a TIFF movie named as a mask
+/// or `res_track.txt` inside the `--ctc` folder would be overwritten or cleared by it.
+fn apart_from_movie(a: &TrackArgs) -> Result<(), Failure> {
+    let named: Vec<(&str, &Path)> = [
+        ("--json", a.json.as_deref()),
+        ("--tracks-csv", a.tracks_csv.as_deref()),
+        ("--overlay", a.overlay.as_deref()),
+    ]
+    .into_iter()
+    .filter_map(|(f, p)| Some((f, p?)))
+    .collect();
+    if a.movie.is_dir() {
+        let movie = a.movie.canonicalize().ok();
+        for &(flag, p) in &named {
+            if movie.is_some() && folder_of(p) == movie {
+                return Err(bad(format!(
+                    "{flag} {}: inside the movie's folder, where it would be read as a frame; write it elsewhere",
+                    p.display()
+                )));
+            }
+        }
+    }
+    let Some(ctc) = a.ctc.as_deref().and_then(|d| d.canonicalize().ok()) else {
+        return Ok(());
+    };
+    let name = |p: &Path| {
+        p.file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    };
+    if !a.movie.is_dir()
+        && folder_of(&a.movie).as_ref() == Some(&ctc)
+        && ctc::is_result_name(&name(&a.movie))
+    {
+        return Err(bad(format!(
+            "--ctc {}: the movie {} is named as a file of the result, which would replace it",
+            ctc.display(),
+            a.movie.display()
+        )));
+    }
+    for &(flag, p) in &named {
+        if folder_of(p).as_ref() == Some(&ctc) && ctc::is_result_name(&name(p)) {
+            return Err(bad(format!(
+                "{flag} {}: a file of the --ctc result; give another name",
+                p.display()
+            )));
+        }
+    }
+    // What the result will write or clear must be regular files where they exist.
+    let entries =
+        std::fs::read_dir(&ctc).map_err(|e| bad(format!("cannot read {}: {e}", ctc.display())))?;
+    for e in entries.flatten() {
+        let n = e.file_name().to_string_lossy().into_owned();
+        if ctc::is_result_name(&n) && !e.file_type().is_ok_and(|t| t.is_file()) {
+            return Err(bad(format!(
+                "--ctc {}: {n} there is not a regular file",
+                ctc.display()
+            )));
+        }
+    }
+    Ok(())
 }
 
 fn write(path: &Path, bytes: &[u8]) -> Result<(), Failure> {

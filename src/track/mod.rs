@@ -469,7 +469,8 @@ impl Tracker {
         let mut params = self.settings.params.clone();
         if self.frame > 0 {
             let side = image.width.min(image.height);
-            params.coarsest_side = (side >> self.levels().saturating_sub(1)).max(1);
+            // Levels the frame is too small for are not made (the pyramid's least side).
+            params.coarsest_side = (side >> self.levels().saturating_sub(1)).max(8);
         }
         let mut ev = match Evolver::new(image, shapes, params) {
             Ok(ev) => ev,

@@ -16,22 +16,29 @@ pub fn mask_name(t: usize, frames: usize) -> String {
     format!("mask{t:0digits$}.tif")
 }
 
+/// A name the CTC result folder holds: `mask` + at least three digits + `.tif`.
+pub fn is_mask_name(name: &str) -> bool {
+    name.strip_prefix("mask")
+        .and_then(|r| r.strip_suffix(".tif"))
+        .is_some_and(|d| d.len() >= 3 && d.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// A name the CTC result folder holds or may clear: a mask or `res_track.txt`.
+pub fn is_result_name(name: &str) -> bool {
+    name == "res_track.txt" || is_mask_name(name)
+}
+
 /// Removes the masks of an earlier result from the CTC folder `dir`: regular files named
 /// `mask` + digits + `.tif` other than `written` (this run's, by name). A folder used
 /// before would otherwise keep frames past this movie's end (or of another digit count)
 /// beside the new ones, and be no valid result. Called once the new result is written;
 /// the number removed.
 pub fn remove_stale_masks(dir: &std::path::Path, written: &[String]) -> std::io::Result<usize> {
-    let is_mask = |n: &str| {
-        n.strip_prefix("mask")
-            .and_then(|r| r.strip_suffix(".tif"))
-            .is_some_and(|d| d.len() >= 3 && d.bytes().all(|b| b.is_ascii_digit()))
-    };
     let mut removed = 0;
     for entry in std::fs::read_dir(dir)? {
         let entry = entry?;
         let name = entry.file_name().to_string_lossy().into_owned();
-        if is_mask(&name) && !written.contains(&name) && entry.file_type()?.is_file() {
+        if is_mask_name(&name) && !written.contains(&name) && entry.file_type()?.is_file() {
             std::fs::remove_file(entry.path())?;
             removed += 1;
         }
