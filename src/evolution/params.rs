@@ -95,6 +95,11 @@ pub struct Params {
     /// [`super::explicit::nucleate`]).
     #[serde(default = "default_open_holes")]
     pub open_holes: bool,
+    /// The initialisation's polygons outline objects: the median inside them gives the
+    /// object's intensity, as under a seed (tracking's carried contours: a few cells in a
+    /// wide field are too few pixels for Otsu's split; see [`crate::image::hints`]).
+    #[serde(default)]
+    pub outline_hints: bool,
 }
 
 fn default_open_holes() -> bool {
@@ -118,6 +123,7 @@ impl Params {
             local: self.local,
             local_radius: self.local_radius,
             coarsest_side: self.coarsest_side,
+            outline_hints: self.outline_hints,
         }
     }
 }
@@ -138,6 +144,7 @@ impl Default for Params {
             local: true,
             local_radius: None,
             open_holes: true,
+            outline_hints: false,
         }
     }
 }

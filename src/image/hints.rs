@@ -1,13 +1,25 @@
-//! What the user's shapes say about the image: the median under the seeds (object) and
-//! along the inside of rectangles (background, for a wrap).
+//! What the user's shapes say about the image: the median under the seeds (object),
+//! inside polygons when they outline objects (a tracked cell's contour carried into the
+//! next frame; a drawn polygon or a seed's basin may hold background too), and along the
+//! inside of rectangles (background, for a wrap).
 
 use super::field::Field;
 use crate::shape::Shape;
 
-/// Medians of the image under the seeds (object) and along the inside of rectangles
-/// (background, for a wrap).
-pub(crate) fn hints(field: &Field, init: &[Shape]) -> (Option<f64>, Option<f64>) {
+/// What the shapes say: medians of the image.
+pub(crate) struct Hints {
+    /// Under the seeds (object).
+    pub object: Option<f64>,
+    /// Along the inside of rectangles (background, for a wrap).
+    pub background: Option<f64>,
+    /// Inside the polygons: the object's when they outline objects.
+    pub outlined: Option<f64>,
+}
+
+/// The medians of [`Hints`] under `init`.
+pub(crate) fn hints(field: &Field, init: &[Shape]) -> Hints {
     let mut obj = Vec::new();
+    let mut outlined = Vec::new();
     let mut bg = Vec::new();
     for s in init {
         match s {
@@ -58,10 +70,19 @@ pub(crate) fn hints(field: &Field, init: &[Shape]) -> (Option<f64>, Option<f64>)
                     }
                 }
             }
-            Shape::Polygon(_) => {}
+            Shape::Polygon(ring) => crate::geometry::fill_even_odd(
+                std::slice::from_ref(ring),
+                field.width,
+                field.height,
+                |i| outlined.push(field.data[i] as f64),
+            ),
         }
     }
-    (median(&mut obj), median(&mut bg))
+    Hints {
+        object: median(&mut obj),
+        background: median(&mut bg),
+        outlined: median(&mut outlined),
+    }
 }
 
 fn median(v: &mut [f64]) -> Option<f64> {

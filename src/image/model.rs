@@ -45,6 +45,8 @@ pub struct ModelParams {
     pub local_radius: Option<f64>,
     /// Coarsest pyramid level's short side, pixels (`usize::MAX`: level 0 only).
     pub coarsest_side: usize,
+    /// The shapes' polygons outline objects ([`super::hints`]).
+    pub outline_hints: bool,
 }
 
 impl ModelParams {
@@ -56,6 +58,7 @@ impl ModelParams {
             local: true,
             local_radius: None,
             coarsest_side: usize::MAX,
+            outline_hints: false,
         }
     }
 }
@@ -119,7 +122,7 @@ impl ImageModel {
         // Phase contrast: the halo reads as background, clipped to the level of the band a
         // wrap shows.
         let band = (params.modality == Modality::PhaseContrast)
-            .then(|| hints(image, shapes).1)
+            .then(|| hints(image, shapes).background)
             .flatten();
         let seen = for_modality(image, params.polarity, params.modality, band);
         Pyramid::new(&seen, params.coarsest_side, PYRAMID_LEVELS)
@@ -129,8 +132,11 @@ impl ImageModel {
     fn finish(pyramid: Pyramid, params: &ModelParams, shapes: &[Shape]) -> Self {
         let fine = &pyramid.levels[0].image;
         let (width, height) = (fine.width, fine.height);
-        let (object_hint, background_hint) = hints(fine, shapes);
-        let global = IntensityModel::learn(fine, params.polarity, object_hint, background_hint);
+        let hint = hints(fine, shapes);
+        let mut global = IntensityModel::learn(fine, params.polarity, hint.object, hint.background);
+        if let Some(o) = hint.outlined.filter(|_| params.outline_hints) {
+            global = global.beside_outlined(o);
+        }
         let (radius, rule, decision) = if params.local {
             let radius = params
                 .local_radius
@@ -402,5 +408,23 @@ mod tests {
         let hinted = ImageModel::prepare(&img, &params, &dim_seed);
         assert!(hinted.global().object < plain.global().object);
         assert!((hinted.global().object - 0.45).abs() < 0.05);
+        // A polygon round the bright disk: a drawn shape or a seed's basin does not
+        // hint; outlines of carried cells do, but only against an Otsu split that missed
+        // the objects ([`IntensityModel::beside_outlined`]), which this one did not.
+        let ring: Vec<Point> = (0..24)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / 24.0;
+                Point::new(30.0 + 8.0 * a.cos(), 30.0 + 8.0 * a.sin())
+            })
+            .collect();
+        let outline = [Shape::Polygon(ring)];
+        let drawn = ImageModel::prepare(&img, &params, &outline);
+        assert_eq!(drawn.global().object, plain.global().object);
+        let carried = ModelParams {
+            outline_hints: true,
+            ..params
+        };
+        let carried = ImageModel::prepare(&img, &carried, &outline);
+        assert_eq!(carried.global().object, plain.global().object);
     }
 }

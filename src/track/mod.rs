@@ -27,6 +27,11 @@
 //!   covers, or when that area grew by the smallest cell kept since the last look (the
 //!   seeds cost more than the rest of a frame, and most frames have no new cell); the
 //!   frame then evolves again with the seeds, its cells starting where they settled;
+//! - a frame's image model takes what object looks like from under the contours
+//!   carried into it when Otsu's split says otherwise
+//!   ([`crate::image::IntensityModel::beside_outlined`]): a few cells in a wide field
+//!   are too small a share of the pixels for Otsu, which splits the background's own
+//!   unevenness instead;
 //! - a seed where a cell was the frame before, on ground that cell's contour has left,
 //!   is a daughter that came apart from it (a condensing nucleus pinches one daughter
 //!   off dimly, and the contour lets go of it instead of splitting): the mother divided,
@@ -468,6 +473,8 @@ impl Tracker {
         }
         let mut params = self.settings.params.clone();
         if self.frame > 0 {
+            // The carried contours say what a cell looks like in this frame.
+            params.outline_hints = true;
             let side = image.width.min(image.height);
             // Levels the frame is too small for are not made (the pyramid's least side).
             params.coarsest_side = (side >> self.levels().saturating_sub(1)).max(8);
