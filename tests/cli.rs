@@ -538,11 +538,7 @@ fn batch_writes_one_json_per_image_and_a_summary() {
         total += outer;
     }
     assert_eq!(rows.len(), total);
-    let mut names: Vec<String> = std::fs::read_dir(&out)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
+    let names = common::names(&out);
     assert_eq!(
         names.len(),
         7,

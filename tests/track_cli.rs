@@ -1,6 +1,8 @@
 //! `topocontour track` on small 16-bit TIFF movies made here: the Cell Tracking Challenge
 //! layout it writes, and bad movies refused with one line, exit 2 and no output.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use tiff::encoder::{colortype::Gray16, TiffEncoder};
@@ -132,13 +134,8 @@ fn outputs_are_checked_before_tracking_and_a_reused_folder_keeps_no_old_masks() 
     tracked(&track(&long, &out), &out, "1 0 5 0\n");
     std::fs::write(out.join("notes.txt"), "kept").unwrap();
     tracked(&track(&m, &out), &out, "1 0 3 0\n");
-    let mut names: Vec<String> = std::fs::read_dir(&out)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
     assert_eq!(
-        names,
+        common::names(&out),
         [
             "mask000.tif",
             "mask001.tif",
