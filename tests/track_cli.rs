@@ -147,6 +147,27 @@ fn outputs_are_checked_before_tracking_and_a_reused_folder_keeps_no_old_masks() 
     );
 }
 
+#[test]
+fn negative_values_get_their_own_message_not_a_flag_error() {
+    let (m, out) = (tmp("negative.tif"), tmp("negative-res"));
+    movie(&m, &[(80, 64); 3]);
+    for (flag, value, says) in [
+        ("--shrink", "-1", "--shrink must be a number ≥ 0"),
+        ("--seed", "-5,10,3", "lies outside"),
+        ("--rect", "-1,0,10,10", "is not inside"),
+    ] {
+        let run = track_with(&m, &out, &[Path::new(flag), Path::new(value)]);
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{flag}: {err}");
+        assert!(err.contains(says), "{flag}: {err}");
+        assert!(!out.exists(), "{flag}: output written");
+    }
+    // --overlay-frame names a frame of --overlay: alone it is a usage error.
+    let run = track_with(&m, &out, &[Path::new("--overlay-frame"), Path::new("1")]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("--overlay"));
+}
+
 /// A capsule: the ends of its axis and its radius (a disk when they meet).
 type Capsule = ((f64, f64), (f64, f64), f64);
 

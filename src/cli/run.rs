@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 #[derive(Args, Debug, Clone)]
 pub struct RunSettings {
     /// A seed disk at X,Y with radius R (pixels); repeat for more.
-    #[arg(long = "seed", value_name = "X,Y,R", value_parser = parse_seed)]
+    #[arg(long = "seed", value_name = "X,Y,R", value_parser = parse_seed, allow_hyphen_values = true)]
     pub seeds: Vec<(f64, f64, f64)>,
     /// A rectangle MARGIN pixels inside the image border, to shrink-wrap everything.
     #[arg(long, value_name = "MARGIN", allow_negative_numbers = true)]
@@ -35,7 +35,7 @@ pub struct RunSettings {
     #[arg(long, value_name = "FILE")]
     pub classifier: Option<PathBuf>,
     /// A rectangle X0,Y0,X1,Y1.
-    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_rect)]
+    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_rect, allow_hyphen_values = true)]
     pub rect: Vec<(f64, f64, f64, f64)>,
     /// Whether objects are darker or brighter than the background.
     #[arg(long, value_enum)]

@@ -33,13 +33,23 @@ pub struct TrackArgs {
     pub modality: Modality,
     /// A seed disk at X,Y with radius R on frame 0; repeat for more (default: automatic
     /// seeds).
-    #[arg(long = "seed", value_name = "X,Y,R", value_parser = super::run::parse_seed)]
+    #[arg(
+        long = "seed",
+        value_name = "X,Y,R",
+        value_parser = super::run::parse_seed,
+        allow_hyphen_values = true
+    )]
     pub seeds: Vec<(f64, f64, f64)>,
     /// A rectangle MARGIN pixels inside the border on frame 0, to shrink-wrap everything.
     #[arg(long, value_name = "MARGIN", allow_negative_numbers = true)]
     pub wrap: Option<f64>,
     /// A rectangle X0,Y0,X1,Y1 on frame 0.
-    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = super::run::parse_rect)]
+    #[arg(
+        long,
+        value_name = "X0,Y0,X1,Y1",
+        value_parser = super::run::parse_rect,
+        allow_hyphen_values = true
+    )]
     pub rect: Vec<(f64, f64, f64, f64)>,
     /// Automatic seeds on frame 0 as well as the shapes given (the default without any).
     #[arg(long)]
@@ -54,7 +64,12 @@ pub struct TrackArgs {
     #[arg(long, value_name = "PX", allow_negative_numbers = true)]
     pub min_area: Option<f64>,
     /// How far a contour moves in before the next frame starts from it (pixels).
-    #[arg(long, value_name = "PX", default_value_t = 2.0)]
+    #[arg(
+        long,
+        value_name = "PX",
+        default_value_t = 2.0,
+        allow_negative_numbers = true
+    )]
     pub shrink: f64,
     /// Pyramid levels each frame after the first evolves through (coarse to fine; one
     /// more level follows a move twice as large).
@@ -74,7 +89,7 @@ pub struct TrackArgs {
     #[arg(long, value_name = "OUT.png")]
     pub overlay: Option<PathBuf>,
     /// The frame (from 0) that --overlay draws.
-    #[arg(long, value_name = "T")]
+    #[arg(long, value_name = "T", requires = "overlay")]
     pub overlay_frame: Option<usize>,
 }
 
