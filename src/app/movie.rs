@@ -200,7 +200,6 @@ impl TopoApp {
         let name = crate::io::folder::file_name(path);
         let mut doc = Document::of_image((*first).clone(), name.clone());
         doc.image = Some(first);
-        self.status.error = None;
         self.status.notify(format!(
             "{name}: {} frames; draw seeds on frame 0 (or none: automatic seeds), then Track",
             movie.len()

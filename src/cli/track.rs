@@ -304,18 +304,6 @@ fn prepare(a: &TrackArgs) -> Result<Plan, Failure> {
         OutputFiles::prepare_for(&inputs, &all).map_err(|e| bad(format!("--overlay: {e}")))?;
     }
     if let Some(dir) = &a.ctc {
-        let same = |p: &Path, q: &Path| {
-            p.canonicalize()
-                .ok()
-                .zip(q.canonicalize().ok())
-                .is_some_and(|(p, q)| p == q)
-        };
-        if same(dir, &a.movie) {
-            return Err(bad(format!(
-                "--ctc {}: that is the movie's own folder; give another folder for the result",
-                dir.display()
-            )));
-        }
         if dir.exists() && !dir.is_dir() {
             return Err(bad(format!(
                 "--ctc {}: not a folder (the result is a folder of masks)",
@@ -374,9 +362,19 @@ fn apart_from_movie(a: &TrackArgs) -> Result<(), Failure> {
             }
         }
     }
-    let Some(ctc) = a.ctc.as_deref().and_then(|d| d.canonicalize().ok()) else {
+    let Some((given, ctc)) = a
+        .ctc
+        .as_deref()
+        .and_then(|d| Some((d, d.canonicalize().ok()?)))
+    else {
         return Ok(());
     };
+    if a.movie.canonicalize().ok().as_ref() == Some(&ctc) {
+        return Err(bad(format!(
+            "--ctc {}: that is the movie's own folder; give another folder for the result",
+            given.display()
+        )));
+    }
     let name = |p: &Path| {
         p.file_name()
             .map(|n| n.to_string_lossy().into_owned())

@@ -12,12 +12,13 @@ pub(crate) struct Hints {
     pub object: Option<f64>,
     /// Along the inside of rectangles (background, for a wrap).
     pub background: Option<f64>,
-    /// Inside the polygons: the object's when they outline objects.
+    /// Inside the polygons, when they outline objects.
     pub outlined: Option<f64>,
 }
 
-/// The medians of [`Hints`] under `init`.
-pub(crate) fn hints(field: &Field, init: &[Shape]) -> Hints {
+/// The medians of [`Hints`] under `init`; inside the polygons only with `outlines` (the
+/// fill is skipped where it would not be read: a seed's basins cover the image).
+pub(crate) fn hints(field: &Field, init: &[Shape], outlines: bool) -> Hints {
     let mut obj = Vec::new();
     let mut outlined = Vec::new();
     let mut bg = Vec::new();
@@ -70,6 +71,7 @@ pub(crate) fn hints(field: &Field, init: &[Shape]) -> Hints {
                     }
                 }
             }
+            Shape::Polygon(_) if !outlines => {}
             Shape::Polygon(ring) => crate::geometry::fill_even_odd(
                 std::slice::from_ref(ring),
                 field.width,

@@ -122,7 +122,7 @@ impl ImageModel {
         // Phase contrast: the halo reads as background, clipped to the level of the band a
         // wrap shows.
         let band = (params.modality == Modality::PhaseContrast)
-            .then(|| hints(image, shapes).background)
+            .then(|| hints(image, shapes, false).background)
             .flatten();
         let seen = for_modality(image, params.polarity, params.modality, band);
         Pyramid::new(&seen, params.coarsest_side, PYRAMID_LEVELS)
@@ -132,9 +132,9 @@ impl ImageModel {
     fn finish(pyramid: Pyramid, params: &ModelParams, shapes: &[Shape]) -> Self {
         let fine = &pyramid.levels[0].image;
         let (width, height) = (fine.width, fine.height);
-        let hint = hints(fine, shapes);
+        let hint = hints(fine, shapes, params.outline_hints);
         let mut global = IntensityModel::learn(fine, params.polarity, hint.object, hint.background);
-        if let Some(o) = hint.outlined.filter(|_| params.outline_hints) {
+        if let Some(o) = hint.outlined {
             global = global.beside_outlined(o);
         }
         let (radius, rule, decision) = if params.local {
