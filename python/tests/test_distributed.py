@@ -145,6 +145,22 @@ def test_killed_worker_loses_nothing(client, tmp_path):
     assert not [p for p in out.iterdir() if p.name.endswith(".tmp")]
 
 
+def test_a_killed_writers_temporaries_are_removed(client, tmp_path):
+    # A worker killed between writing a temporary and renaming it leaves it behind; the
+    # kill above only sometimes lands there, so the leftover is made here.
+    src = tmp_path / "in"
+    src.mkdir()
+    write_png(src / "a.png", blobs(96, 3, 5)[0])
+    out = tmp_path / "out"
+    (out / ".topocontour").mkdir(parents=True)
+    stale = [out / f".a.json.{'0' * 32}.tmp", out / ".topocontour" / f".a.json.{'f' * 32}.tmp"]
+    mine = [out / f".b.json.{'0' * 32}.tmp", out / ".a.json.tmp", out / "a.json.tmp"]
+    for p in stale + mine:
+        p.write_bytes(b"")
+    assert map_images(src, out, client=client, progress=False, **SETTINGS).done == 1
+    assert not any(p.exists() for p in stale) and all(p.exists() for p in mine)
+
+
 def label_matches(whole, tiled):
     """For each object of `whole`, the IoU with the object of `tiled` it overlaps most."""
     n = int(whole.max())

@@ -7,7 +7,9 @@ scheduler of its own.
 `io::folder::output_stems`), bytes and `summary.csv`. An image's outputs are renamed into
 place together, then a record in `OUT/.topocontour/` says it is done with these
 settings: a retried or re-run task finds it and skips the image, so nothing is written
-twice and a killed worker loses only the images Dask then runs again elsewhere.
+twice and a killed worker loses only the images Dask then runs again elsewhere. A
+worker killed between writing a temporary and renaming it leaves that hidden temporary
+behind; once every task is done the client removes those of this run's output names.
 
 `segment_large` segments overlapping tiles with automatic seeds and keeps an object only
 in the tile whose core holds its lowest-leftmost point (the ownership rule of StarDist's
@@ -28,6 +30,7 @@ import hashlib
 import json
 import math
 import os
+import re
 import tempfile
 import uuid
 from dataclasses import dataclass, field
@@ -134,6 +137,20 @@ def _write_all(files):
         for tmp, _ in temps:
             if tmp.exists():
                 tmp.unlink()
+
+
+_TEMPORARY = re.compile(r"\.(.+)\.[0-9a-f]{32}\.tmp")  # `_write_all`'s temporaries
+
+
+def _sweep_temporaries(paths):
+    """Removes temporaries a killed writer left beside `paths`; called only when no
+    writer of them runs any more."""
+    for folder in {p.parent for p in paths}:
+        names = {p.name for p in paths if p.parent == folder}
+        for entry in folder.iterdir():
+            m = _TEMPORARY.fullmatch(entry.name)
+            if m and m.group(1) in names:
+                entry.unlink(missing_ok=True)
 
 
 def _settings_key(path, formats, params):
@@ -257,6 +274,8 @@ def map_images(paths, out_dir, *, client, formats=("json",), per_task=None, prog
                 rows[s], report.done = value, report.done + 1
             else:
                 report.failed[p] = value
+    _sweep_temporaries([out_dir / FORMATS[f].format(s) for s in stems for f in formats]
+                       + [_record(out_dir, s) for s in stems])
     text = SUMMARY_HEADER + "".join(rows.get(s, "") for s in stems)
     report.objects = sum(rows[s].count("\n") for s in rows)
     _write_all({report.summary: text.encode()})
