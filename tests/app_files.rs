@@ -9,6 +9,39 @@ use egui_kittest::kittest::Queryable;
 use topocontour::app::{Command, Format, TopoApp};
 
 #[test]
+fn closing_with_work_not_saved_asks_first() {
+    let mut h = sample_after(0);
+    assert!(
+        close_window(&mut h),
+        "the sample as it opened: nothing to lose"
+    );
+    let mut h = harness(bright_bridge_with_seeds(&[]));
+    h.step();
+    assert!(close_window(&mut h), "an image opened: nothing to lose");
+    let seed = |h: &mut egui_kittest::Harness<'_, TopoApp>, x| {
+        h.state_mut()
+            .send(Command::AddShape(topocontour::evolution::Shape::Disk {
+                center: topocontour::Point::new(x, 40.0),
+                radius: 5.0,
+            }));
+        h.step();
+    };
+    seed(&mut h, 40.0);
+    assert!(!close_window(&mut h), "a seed clicked: asked");
+    h.get_by_label_contains("not saved as a session");
+    h.get_by_label("Save session…");
+    click_label(&mut h, "Cancel");
+    assert!(h.state().view.question.is_none());
+    save_session(&mut h, "close.json");
+    assert!(close_window(&mut h), "saved");
+    seed(&mut h, 60.0);
+    assert!(!close_window(&mut h), "changed after the save");
+    click_label(&mut h, "Quit without saving");
+    assert!(sent(&h, &egui::ViewportCommand::Close));
+    assert!(close_window(&mut h), "not asked twice");
+}
+
+#[test]
 fn export_writes_an_svg_that_parses_and_reset_clears() {
     let mut h = harness(TopoApp::with_sample());
     h.step();

@@ -277,6 +277,31 @@ fn the_tracking_result_exports_in_the_ctc_layout() {
 }
 
 #[test]
+fn closing_with_a_tracking_not_exported_asks_first() {
+    let mut h = tracked_movie("close", &dividing_rod());
+    assert!(!close_window(&mut h));
+    h.get_by_label("The tracking of 8 frames is not exported.");
+    click_label(&mut h, "Cancel");
+    let out = temp("close-ctc");
+    let _ = std::fs::remove_dir_all(&out);
+    h.state_mut().send(Command::ExportCtc(out.clone()));
+    h.step();
+    assert_no_error(&h);
+    assert!(close_window(&mut h), "exported");
+    click_label(&mut h, "Track again");
+    wait_for_tracking(&mut h);
+    assert!(!close_window(&mut h), "tracked again since");
+    assert_eq!(
+        h.get_all_by_label("Export CTC…").count(),
+        2,
+        "the panel's and the question's"
+    );
+    click_label(&mut h, "Quit without saving");
+    assert!(sent(&h, &egui::ViewportCommand::Close));
+    assert!(close_window(&mut h), "not asked twice");
+}
+
+#[test]
 fn a_bad_movie_is_refused_with_one_line() {
     let dir = movie_folder("short", &dividing_rod()[..1]);
     let mut app = TopoApp::default();

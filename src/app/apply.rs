@@ -13,7 +13,21 @@ impl TopoApp {
     pub(super) fn apply_now(&mut self, c: Command) {
         if self.history.starts_step(&c) {
             self.history.push(self.doc.clone());
+            // Opening adds no work of the user's (and the work before stays in Undo).
+            self.unsaved |= !matches!(
+                c,
+                Command::OpenImage(_) | Command::OpenSession(_) | Command::OpenMovie(_)
+            );
         }
+        self.unsaved |= matches!(
+            c,
+            Command::Undo
+                | Command::Redo
+                | Command::Track
+                | Command::TrackConfirmed
+                | Command::ContinueTrack
+                | Command::Retrack(_)
+        );
         match c.group() {
             Group::Hand => self.hand_edit(c),
             Group::History => self.undo_redo(c),

@@ -138,9 +138,12 @@ impl TopoApp {
                 }
             }
             Command::SaveSession(p) => match self.save_session(&p) {
-                Ok(()) => self
-                    .status
-                    .notify(format!("session saved to {}", p.display())),
+                Ok(()) => {
+                    // A movie's session keeps the frame on screen, not the tracking.
+                    self.unsaved &= self.doc.movie.is_some();
+                    self.status
+                        .notify(format!("session saved to {}", p.display()))
+                }
                 Err(e) => self.status.error = Some(e),
             },
             Command::OpenSession(p) => {
@@ -170,6 +173,44 @@ impl TopoApp {
             (None, true) => self.prompt_path(PathPurpose::SaveSession, name),
             (None, false) => self.prompt_path(PathPurpose::OpenSession, String::new()),
         }
+    }
+
+    /// Closing the window with work not saved asks first ([`super::Question::Quit`]);
+    /// "Quit without saving" closes it.
+    pub(super) fn guard_close(&mut self, ctx: &egui::Context) {
+        if !ctx.input(|i| i.viewport().close_requested()) || self.view.quit_confirmed {
+            return;
+        }
+        if let Some(what) = self.unsaved_work() {
+            ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
+            self.view.question = Some(super::Question::Quit(what));
+        }
+    }
+
+    /// What closing now would lose, in a sentence; None when nothing.
+    pub fn unsaved_work(&self) -> Option<String> {
+        if !self.unsaved {
+            return None;
+        }
+        let doc = &self.doc;
+        if let Some(tr) = doc.movie.as_ref().and_then(|m| m.tracking.as_ref()) {
+            let counted = crate::cli::counted;
+            let corrected = match tr.corrected.len() {
+                0 => String::new(),
+                n => format!(" and your corrections on {}", counted(n, "frame")),
+            };
+            return Some(format!(
+                "The tracking of {}{corrected} is not exported.",
+                counted(tr.frames.len(), "frame")
+            ));
+        }
+        let made = !doc.shapes.is_empty()
+            || doc
+                .run
+                .as_ref()
+                .is_some_and(|r| !r.evolver_at(doc.shown).edits().is_empty())
+            || doc.train.painted();
+        made.then(|| "Your seeds, shapes, edits and settings are not saved as a session.".into())
     }
 
     /// Writes the session of the frame on screen.

@@ -59,6 +59,8 @@ pub struct TopoApp {
     commands: Vec<Command>,
     /// Undo and redo steps.
     history: history::History,
+    /// The document changed since it was last saved (a session; a movie's CTC export).
+    unsaved: bool,
 }
 
 /// Work running in the background.
@@ -101,6 +103,7 @@ impl TopoApp {
         app.doc = Document::of_image(field, "cells.png (sample)".into());
         app.apply_now(Command::WrapBorder(6.0));
         app.doc.sample_wrap = true;
+        app.unsaved = false; // the sample's own wrap is no work of the user's
         app
     }
 
@@ -180,6 +183,7 @@ impl TopoApp {
         if self.view.egui_ctx.is_none() {
             self.view.egui_ctx = Some(ctx.clone());
         }
+        self.guard_close(&ctx);
         self.poll_tracking();
         self.poll_map();
         self.begin_correction();

@@ -165,10 +165,14 @@ impl TopoApp {
             Command::CloseQuestion => self.view.question = None,
             Command::SelectTrack(t) => self.view.selected_track = t,
             Command::ExportCtc(dir) => match self.export_ctc(&dir) {
-                Ok(n) => self.status.notify(format!(
-                    "wrote {n} masks and res_track.txt to {}",
-                    dir.display()
-                )),
+                Ok(n) => {
+                    // What is exported is kept, unless tracking still adds frames to it.
+                    self.unsaved &= self.jobs.track.is_some();
+                    self.status.notify(format!(
+                        "wrote {n} masks and res_track.txt to {}",
+                        dir.display()
+                    ))
+                }
                 Err(e) => self.status.error = Some(e),
             },
             Command::ExportCtcDialog => match self.dialog().pick_folder() {

@@ -76,6 +76,8 @@ pub struct ViewState {
     pub follow_tracking: bool,
     /// A question the user must answer before work of theirs is replaced.
     pub question: Option<Question>,
+    /// The user chose to quit without saving: the window closes without asking again.
+    pub quit_confirmed: bool,
     /// Frames of the movie read so far.
     pub(super) frames: super::movie::FrameCache,
     /// The window's context, to wake it from background threads.
@@ -103,6 +105,8 @@ pub enum Question {
     },
     /// Tracking again from frame 0 replaces the corrections on these frames.
     TrackAgain(Vec<usize>),
+    /// The window was asked to close with work not saved (what, in a sentence).
+    Quit(String),
 }
 
 /// What the status bar says.

@@ -17,6 +17,7 @@ pub use bench::{bench, BenchArgs};
 pub use run::{
     classifier_for, init_shapes, job_for, mode_of, params_for, run_loaded, teach_for, RunSettings,
 };
+pub(crate) use segment::counted;
 pub use segment::{replay, segment, OutputArgs, ReplayArgs, SegmentArgs};
 pub use track::{track, tracker_for, TrackArgs};
 pub use train::{classifier_of, train, TrainArgs};

@@ -196,7 +196,7 @@ pub(super) fn done_line(
 }
 
 /// `n` and the word, plural unless one.
-pub(super) fn counted(n: usize, word: &str) -> String {
+pub(crate) fn counted(n: usize, word: &str) -> String {
     format!("{n} {word}{}", if n == 1 { "" } else { "s" })
 }
 

@@ -162,3 +162,25 @@ pub fn type_path(
     h.step();
     h.step();
 }
+
+/// Asks the window to close as the title bar's close button does; whether it closes
+/// (the app did not cancel it).
+pub fn close_window(h: &mut Harness<'_, TopoApp>) -> bool {
+    h.input_mut()
+        .viewports
+        .entry(egui::ViewportId::ROOT)
+        .or_default()
+        .events
+        .push(egui::ViewportEvent::Close);
+    h.step();
+    let closes = !sent(h, &egui::ViewportCommand::CancelClose);
+    h.step(); // a window shows from its second frame
+    closes
+}
+
+/// Whether the last frame sent `command` to the window.
+pub fn sent(h: &Harness<'_, TopoApp>, command: &egui::ViewportCommand) -> bool {
+    h.output().viewport_output[&egui::ViewportId::ROOT]
+        .commands
+        .contains(command)
+}

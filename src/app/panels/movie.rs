@@ -239,7 +239,8 @@ fn draw_tracks(
 }
 
 /// The question asked before work of the user's is replaced: the corrections of later
-/// frames (tracking after a correction again), or all of them (tracking again).
+/// frames (tracking after a correction again), all of them (tracking again), or
+/// everything not saved (closing the window).
 pub(in crate::app) fn question_ui(cx: &mut Ctx, ctx: &egui::Context) {
     let Some(q) = cx.view.question.clone() else {
         return;
@@ -250,7 +251,11 @@ pub(in crate::app) fn question_ui(cx: &mut Ctx, ctx: &egui::Context) {
             .collect::<Vec<_>>()
             .join(", ")
     };
-    egui::Window::new("Replace your corrections?")
+    let title = match q {
+        super::super::Question::Quit(_) => "Quit without saving?",
+        _ => "Replace your corrections?",
+    };
+    egui::Window::new(title)
         .collapsible(false)
         .resizable(false)
         .anchor(egui::Align2::CENTER_CENTER, Vec2::ZERO)
@@ -284,6 +289,27 @@ pub(in crate::app) fn question_ui(cx: &mut Ctx, ctx: &egui::Context) {
                         cx.send(Command::TrackConfirmed);
                     }
                     if ui.button("Keep my corrections").clicked() {
+                        cx.send(Command::CloseQuestion);
+                    }
+                });
+            }
+            super::super::Question::Quit(what) => {
+                ui.label(what);
+                ui.horizontal(|ui| {
+                    let (save, command) = if cx.doc.movie.is_some() {
+                        ("Export CTC…", Command::ExportCtcDialog)
+                    } else {
+                        ("Save session…", Command::SessionDialog(true))
+                    };
+                    if ui.button(save).clicked() {
+                        cx.send(Command::CloseQuestion);
+                        cx.send(command);
+                    }
+                    if ui.button("Quit without saving").clicked() {
+                        cx.view.quit_confirmed = true;
+                        ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+                    }
+                    if ui.button("Cancel").clicked() {
                         cx.send(Command::CloseQuestion);
                     }
                 });
