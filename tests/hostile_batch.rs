@@ -97,6 +97,18 @@ fn a_format_named_twice_is_one_refusal() {
     assert!(!out.exists());
 }
 
+/// `--out` naming a file or a device is refused as not a folder (it said "File exists").
+#[test]
+fn out_that_is_not_a_folder_is_refused_as_such() {
+    let (d, input) = inputs("notdir", &["a.png"]);
+    let file = d.join("file");
+    std::fs::write(&file, b"keep").unwrap();
+    for out in [file.as_path(), Path::new("/dev/null")] {
+        refused(&mut batch(&input, out, "json"), "not a folder");
+    }
+    assert_eq!(std::fs::read(&file).unwrap(), b"keep");
+}
+
 /// Issue 24.10: `--jobs 100000` runs at most one thread per core (it used to spawn
 /// threads without end).
 #[test]

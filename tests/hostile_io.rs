@@ -133,6 +133,38 @@ fn one_path_for_two_outputs_is_refused() {
 }
 
 #[test]
+fn an_image_output_named_in_another_format_is_refused_and_a_tif_mask_is_tiff() {
+    let (d, input) = workdir("extension");
+    let jpg = d.join("labels.jpg");
+    expect_refused(
+        &wrapped(s(&input), &["--labels", s(&jpg)]),
+        "written as png or tiff, not .jpg",
+    );
+    expect_refused(
+        &wrapped(s(&input), &["--overlay", s(&d.join("o.tif"))]),
+        "written as png",
+    );
+    assert_eq!(others(&d, &[&input]), Vec::<PathBuf>::new());
+    let mask = d.join("mask.tif");
+    let out = run_within(
+        bin().args(wrapped(s(&input), &["--mask", s(&mask)])),
+        Duration::from_secs(60),
+    );
+    assert!(out.status.success(), "{out:?}");
+    let read = image::open(&mask).unwrap();
+    assert_eq!(
+        image::ImageFormat::from_path(&mask).unwrap(),
+        image::ImageFormat::Tiff
+    );
+    assert!(read.to_luma8().pixels().any(|p| p.0[0] == 255));
+    let bytes = std::fs::read(&mask).unwrap();
+    assert!(
+        bytes.starts_with(b"II*\0") || bytes.starts_with(b"MM\0*"),
+        "TIFF bytes"
+    );
+}
+
+#[test]
 fn special_files_as_outputs_stay_special() {
     let (d, input) = workdir("special-out");
     let fifo = d.join("out.json");

@@ -137,6 +137,67 @@ fn a_batch_asked_to_stop_summarises_what_it_did() {
 }
 
 #[test]
+fn a_track_asked_to_stop_writes_the_frames_it_tracked_as_a_whole_result() {
+    let d = common::workdir("signals", "track");
+    let movie = d.join("movie");
+    std::fs::create_dir(&movie).unwrap();
+    // Many frames of 16 dark disks drifting: long enough to be interrupted.
+    let frames = 400;
+    for t in 0..frames {
+        let disks: Vec<(f64, f64, f64)> = (0..16)
+            .map(|k| {
+                let drift = (t % 40) as f64 * 0.5;
+                (
+                    40.0 + 60.0 * (k % 4) as f64 + drift,
+                    40.0 + 60.0 * (k / 4) as f64,
+                    14.0,
+                )
+            })
+            .collect();
+        disks_png(&movie.join(format!("f{t:03}.png")), 260, 240, &disks);
+    }
+    let out = d.join("res");
+    let child = bin()
+        .args([
+            "track",
+            s(&movie),
+            "--object",
+            "dark",
+            "--auto-seeds",
+            "--ctc",
+            s(&out),
+        ])
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    wait_for(&d, |n| n == "res");
+    wait_for(&out, |n| n == "mask005.tif");
+    signal(&child, libc::SIGINT);
+    let result = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(130), "{err}");
+    assert!(err.contains("interrupted: frames 0 to"), "{err}");
+    let listed = names(&out);
+    assert!(!listed.iter().any(|n| is_temporary(n)), "{listed:?}");
+    let masks = listed.iter().filter(|n| n.starts_with("mask")).count();
+    assert!((6..frames).contains(&masks), "{masks} masks");
+    for t in 0..masks {
+        assert!(
+            listed.contains(&format!("mask{t:03}.tif")),
+            "frames from 0 on"
+        );
+    }
+    // res_track.txt describes exactly the frames written.
+    let res = std::fs::read_to_string(out.join("res_track.txt")).unwrap();
+    let last = res
+        .lines()
+        .map(|l| l.split(' ').nth(2).unwrap().parse::<usize>().unwrap())
+        .max()
+        .unwrap();
+    assert_eq!(last, masks - 1, "{res}");
+}
+
+#[test]
 fn a_killed_batch_leaves_no_summary_of_an_earlier_run() {
     let d = common::workdir("signals", "stale");
     let input = folder(&d, 60);

@@ -103,6 +103,12 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
     {
         return Err(bad(format!("--formats names {} twice", f.name())));
     }
+    if a.out.exists() && !a.out.is_dir() {
+        return Err(bad(format!(
+            "--out {}: not a folder (batch writes a folder of outputs)",
+            a.out.display()
+        )));
+    }
     std::fs::create_dir_all(&a.out)
         .map_err(|e| bad(format!("cannot create {}: {e}", a.out.display())))?;
     refuse_out_in_input(a)?;

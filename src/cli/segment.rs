@@ -39,8 +39,8 @@ pub struct OutputArgs {
     /// Write contours and events as JSON.
     #[arg(long, value_name = "OUT")]
     pub json: Option<PathBuf>,
-    /// Write a mask PNG (255 inside).
-    #[arg(long, value_name = "OUT.png")]
+    /// Write the mask (255 inside): TIFF for a .tif name, else PNG.
+    #[arg(long, value_name = "OUT.png|tif")]
     pub mask: Option<PathBuf>,
     /// Write an SVG of the regions.
     #[arg(long, value_name = "OUT")]
@@ -64,9 +64,10 @@ pub struct OutputArgs {
 }
 
 impl OutputArgs {
-    /// The outputs the flags name, in a fixed order.
-    pub fn list(&self) -> Vec<(Format, &Path)> {
-        [
+    /// The outputs the flags name, in a fixed order; an image output named in another
+    /// image format (`--mask cells.jpg`) is refused.
+    pub fn list(&self) -> Result<Vec<(Format, &Path)>, Failure> {
+        let wanted: Vec<_> = [
             (Format::Json, &self.json),
             (Format::Mask, &self.mask),
             (Format::Svg, &self.svg),
@@ -78,7 +79,12 @@ impl OutputArgs {
         ]
         .into_iter()
         .filter_map(|(f, p)| p.as_deref().map(|p| (f, p)))
-        .collect()
+        .collect();
+        for &(f, p) in &wanted {
+            f.check_name(p)
+                .map_err(|e| bad(format!("--{} {}: {e}", f.name(), p.display())))?;
+        }
+        Ok(wanted)
     }
 }
 
@@ -110,7 +116,7 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
         ));
     }
     // Every output is checked, and its temporary created, before any work.
-    let wanted = a.out.list();
+    let wanted = a.out.list()?;
     let extras: Vec<&Path> = [&a.save_session, &a.save_classifier]
         .into_iter()
         .filter_map(|p| p.as_deref())
@@ -217,7 +223,7 @@ pub struct ReplayArgs {
 /// Runs `replay`: the session's run again, headless, and its outputs.
 pub fn replay(a: &ReplayArgs) -> Result<Evolver, Failure> {
     let session = Session::read(&a.session).map_err(|e| bad(e.to_string()))?;
-    let wanted = a.out.list();
+    let wanted = a.out.list()?;
     let paths: Vec<&Path> = wanted.iter().map(|&(_, p)| p).collect();
     let image_path = a
         .image

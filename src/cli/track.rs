@@ -174,7 +174,15 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
         size: (w, h),
         csv: &mut csv,
     };
+    // A signal stops tracking after the frame in progress; the frames tracked are then
+    // written as a whole result (masks with their res_track.txt), as a batch summarises.
+    super::signals::stop_gently();
+    let mut tracked = 0;
     for image in movie.frames().map_err(|e| bad(e.to_string()))? {
+        if super::signals::stop_asked() {
+            break;
+        }
+        tracked += 1;
         let image = image.map_err(|e| bad(e.to_string()))?;
         let frame = tracker.step(&image).map_err(|e| bad(e.to_string()))?;
         if let Some(mut before) = held.take() {
@@ -200,7 +208,7 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
     let lineage = tracker.lineage();
     if let Some(dir) = &plan.ctc {
         write(&dir.join("res_track.txt"), lineage.ctc_text().as_bytes())?;
-        let written: Vec<String> = (0..movie.len())
+        let written: Vec<String> = (0..tracked)
             .map(|t| ctc::mask_name(t, movie.len()))
             .collect();
         ctc::remove_stale_masks(dir, &written).map_err(|e| {
@@ -221,6 +229,21 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
         .commit(contents)
         .map_err(|e| bad(e.to_string()))?;
     let divisions = lineage.tracks().iter().filter(|t| t.parent != 0).count() / 2;
+    if tracked < movie.len() {
+        return Err(Failure {
+            code: 130,
+            message: match tracked {
+                0 => "interrupted before the first frame: nothing tracked".into(),
+                t => format!(
+                    "interrupted: frames 0 to {} of {} tracked and written ({} tracks, {} divisions)",
+                    t - 1,
+                    movie.len(),
+                    lineage.tracks().len(),
+                    divisions
+                ),
+            },
+        });
+    }
     note(&format!(
         "tracked {} frames of {}: {} tracks, {} divisions",
         movie.len(),

@@ -13,7 +13,7 @@ use std::path::Path;
 pub enum Format {
     /// Contours and events (the CLI contract).
     Json,
-    /// Mask PNG, 255 inside.
+    /// Mask, 255 inside (PNG, or TIFF for a .tif name).
     Mask,
     /// SVG of the regions.
     Svg,
@@ -40,6 +40,30 @@ pub enum ExportError {
         "an object reaches {0} px; ImageJ ROI coordinates stop at 32,767 (export GeoJSON instead)"
     )]
     RoiTooFar(u64),
+    /// The file name's extension names an image format this output is not written in.
+    #[error("{format} is written as {allowed}, not .{ext}")]
+    Extension {
+        /// What the output is ("a mask").
+        format: &'static str,
+        /// The formats it is written in ("PNG or TIFF").
+        allowed: &'static str,
+        /// The extension given.
+        ext: String,
+    },
+}
+
+/// Extensions of image formats: a raster output named so must be written so.
+const IMAGE_EXTENSIONS: [&str; 9] = [
+    "png", "tif", "tiff", "jpg", "jpeg", "bmp", "gif", "webp", "j2k",
+];
+
+/// Whether `path` ends in .tif or .tiff.
+fn is_tiff(path: &Path) -> bool {
+    extension(path).is_some_and(|e| e == "tif" || e == "tiff")
+}
+
+fn extension(path: &Path) -> Option<String> {
+    Some(path.extension()?.to_str()?.to_ascii_lowercase())
 }
 
 impl Format {
@@ -95,29 +119,48 @@ impl Format {
         }
     }
 
+    /// Refuses a file name whose extension names an image format this output is not
+    /// written in (`--mask cells.jpg` would hold PNG bytes); checked before any work.
+    pub fn check_name(self, path: &Path) -> Result<(), ExportError> {
+        let (format, allowed, ok): (_, _, &[&str]) = match self {
+            Format::Mask => ("a mask", "PNG or TIFF", &["png", "tif", "tiff"]),
+            Format::Labels => ("a label image", "PNG or TIFF", &["png", "tif", "tiff"]),
+            Format::Overlay => ("an overlay", "PNG", &["png"]),
+            _ => return Ok(()),
+        };
+        match extension(path) {
+            Some(ext) if IMAGE_EXTENSIONS.contains(&ext.as_str()) && !ok.contains(&&*ext) => {
+                Err(ExportError::Extension {
+                    format,
+                    allowed,
+                    ext,
+                })
+            }
+            _ => Ok(()),
+        }
+    }
+
     /// The bytes of this output of `out` (drawn on `image` for the overlay); `path` is
-    /// where they go: a label image is TIFF unless `path` ends in something else than
-    /// .tif/.tiff (then PNG).
+    /// where they go: a mask or label image is TIFF when `path` ends in .tif/.tiff,
+    /// else PNG.
     pub fn render(
         self,
         out: &Outputs,
         image: &dyn Gray,
         path: &Path,
     ) -> Result<Vec<u8>, ExportError> {
+        self.check_name(path)?;
         Ok(match self {
             Format::Json => out.json().into_bytes(),
-            Format::Mask => out.mask_png(),
+            Format::Mask => out.mask_image(is_tiff(path)),
             Format::Svg => out.svg().into_bytes(),
             Format::Geojson => out.geojson().into_bytes(),
             Format::Csv => out.csv().into_bytes(),
             Format::Overlay => out.overlay_png(image),
             Format::Roi => crate::io::roi::roi_zip(out.set)?,
-            Format::Labels => {
-                let tiff = path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
-                    e.eq_ignore_ascii_case("tif") || e.eq_ignore_ascii_case("tiff")
-                });
-                out.labels_image(tiff).ok_or(ExportError::TooManyLabels)?
-            }
+            Format::Labels => out
+                .labels_image(is_tiff(path))
+                .ok_or(ExportError::TooManyLabels)?,
         })
     }
 }
@@ -134,5 +177,20 @@ mod tests {
             assert!(name.ends_with(&format!(".{}", f.extension())), "{name}");
         }
         assert_eq!(Format::Roi.file_name("a"), "a.roi.zip");
+    }
+
+    #[test]
+    fn an_image_output_named_in_another_image_format_is_refused() {
+        let name = |f: Format, n: &str| f.check_name(Path::new(n)).map_err(|e| e.to_string());
+        assert_eq!(
+            name(Format::Labels, "a.JPG"),
+            Err("a label image is written as PNG or TIFF, not .jpg".into())
+        );
+        assert!(name(Format::Mask, "a.jpeg").is_err());
+        assert!(name(Format::Overlay, "a.tif").is_err());
+        for ok in ["a.png", "a.TIFF", "a", "a.mask", "a.out"] {
+            assert!(name(Format::Mask, ok).is_ok(), "{ok}");
+        }
+        assert!(name(Format::Json, "a.png").is_ok(), "not an image output");
     }
 }

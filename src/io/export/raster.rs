@@ -82,6 +82,19 @@ impl Outputs<'_> {
         out
     }
 
+    /// Mask as TIFF (`tiff`) or PNG bytes.
+    pub fn mask_image(&self, tiff: bool) -> Vec<u8> {
+        if !tiff {
+            return self.mask_png();
+        }
+        let img = image::GrayImage::from_raw(self.width as u32, self.height as u32, self.mask())
+            .expect("one value per pixel");
+        let mut out = std::io::Cursor::new(Vec::new());
+        img.write_to(&mut out, image::ImageFormat::Tiff)
+            .expect("TIFF encoding into memory");
+        out.into_inner()
+    }
+
     /// Mask as PNG bytes.
     pub fn mask_png(&self) -> Vec<u8> {
         let mut out = Vec::new();
