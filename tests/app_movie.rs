@@ -216,6 +216,47 @@ fn a_division_is_listed_in_the_event_log_and_a_click_shows_its_frame() {
 }
 
 #[test]
+fn keys_and_play_move_through_a_tracked_movie_not_the_evolution() {
+    let mut h = tracked_movie("keys", &dividing_rod());
+    h.state_mut().send(Command::SeekMovieFrame(0));
+    h.step();
+    let evolution = h.state().doc.shown;
+    h.key_press(egui::Key::ArrowRight);
+    h.step();
+    assert_eq!(movie_frame(&h), 1);
+    h.key_press(egui::Key::E);
+    h.step();
+    assert_eq!(movie_frame(&h), 4, "the next division's frame");
+    assert_eq!(h.state().view.selected_track, Some(1));
+    h.key_press(egui::Key::ArrowLeft);
+    h.step();
+    assert_eq!(movie_frame(&h), 3);
+    assert_eq!(h.state().doc.shown, evolution, "the evolution did not step");
+    h.key_press(egui::Key::Space);
+    h.step();
+    assert!(h.state().view.movie_playing && !h.state().view.playing);
+    for _ in 0..200 {
+        if !h.state().view.movie_playing {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.step();
+    }
+    assert_eq!(movie_frame(&h), 7, "played to the last frame and stopped");
+    assert!(!h.state().view.movie_playing);
+    h.step(); // the bar drawn since it stopped
+    click_label(&mut h, "Play movie");
+    assert!(h.state().view.movie_playing);
+    assert!(
+        movie_frame(&h) <= 1,
+        "at the end, play starts again from frame 0"
+    );
+    h.step();
+    click_label(&mut h, "Pause movie");
+    assert!(!h.state().view.movie_playing);
+}
+
+#[test]
 fn a_division_the_next_frame_takes_back_leaves_the_event_log_and_the_lineage() {
     let mut h = tracked_movie("parting", &parting_nucleus());
     let tr = tracking(&h);

@@ -156,6 +156,8 @@ pub enum Command {
     OpenMovieDialog(bool),
     /// Show frame `n` of the movie (0-based; the evolution's run starts again).
     SeekMovieFrame(usize),
+    /// Play the movie's frames one after another, or pause them (Space on a tracked movie).
+    PlayMovie(bool),
     /// Track the movie from frame 0 in the background.
     Track,
     /// Track from frame 0 even though it replaces the corrections made by hand.
@@ -283,9 +285,9 @@ impl Command {
             OpenImage(..) | OpenDialog | Export(..) | ExportDialog(..) | SessionDialog(..)
             | SaveSession(..) | OpenSession(..) | ApplyToFolder(..) | ApplyToFolderDialog
             | CancelFolder => Group::Files,
-            OpenMovie(..) | OpenMovieDialog(..) | SeekMovieFrame(..) | Track | TrackConfirmed
-            | ContinueTrack | Retrack(..) | CloseQuestion | CancelTrack | SelectTrack(..)
-            | ExportCtc(..) | ExportCtcDialog => Group::Movie,
+            OpenMovie(..) | OpenMovieDialog(..) | SeekMovieFrame(..) | PlayMovie(..) | Track
+            | TrackConfirmed | ContinueTrack | Retrack(..) | CloseQuestion | CancelTrack
+            | SelectTrack(..) | ExportCtc(..) | ExportCtcDialog => Group::Movie,
             Paint { .. }
             | SetTrainLabel(..)
             | ShowProbabilities(..)
@@ -337,6 +339,7 @@ impl Command {
             | CancelFolder
             | OpenMovieDialog(_)
             | SeekMovieFrame(_)
+            | PlayMovie(_)
             | Track
             | TrackConfirmed
             | ContinueTrack

@@ -4,11 +4,15 @@ use super::{Command, Ctx};
 use std::path::PathBuf;
 
 /// Every shortcut, as the help window lists it.
-pub const SHORTCUTS: [(&str, &str); 14] = [
+pub const SHORTCUTS: [(&str, &str); 15] = [
     ("Space", "play / pause"),
     ("Right arrow", "step one frame"),
     ("Left arrow", "one frame back"),
     ("E", "step to the next topology event"),
+    (
+        "on a tracked movie",
+        "Space plays its frames, the arrows move a frame, E goes to the next division",
+    ),
     ("[ and ]", "brush smaller / larger"),
     (
         "1, 2, 3, 0",
@@ -65,22 +69,13 @@ fn frame_keys(cx: &mut Ctx, ui: &egui::Ui) {
             i.key_pressed(egui::Key::F1) || i.key_pressed(egui::Key::Questionmark),
         )
     });
+    frame_view_keys(cx, escape, fit, help);
+    if movie_keys(cx, left, right, space, event) {
+        return;
+    }
     let shown = cx.doc.shown;
     if left && shown > 0 {
         cx.send(Command::SeekFrame(shown - 1));
-    }
-    if escape {
-        if cx.view.show_help {
-            cx.view.show_help = false;
-        } else {
-            cx.view.canvas.cancel_polygon();
-        }
-    }
-    if fit {
-        cx.view.canvas.refit();
-    }
-    if help {
-        cx.view.show_help = !cx.view.show_help;
     }
     if event {
         cx.send(Command::StepToEvent);
@@ -94,6 +89,54 @@ fn frame_keys(cx: &mut Ctx, ui: &egui::Ui) {
     }
     if right {
         cx.send(Command::Step(1));
+    }
+}
+
+/// On a tracked movie (no frame open for correction) the frame keys move through the
+/// movie, not the evolution: ←/→ a frame, Space plays or pauses it, E the next division.
+/// Whether they did.
+fn movie_keys(cx: &mut Ctx, left: bool, right: bool, space: bool, event: bool) -> bool {
+    let Some(m) = cx.doc.movie.as_ref() else {
+        return false;
+    };
+    let Some(tr) = m.tracking.as_ref().filter(|_| m.correcting.is_none()) else {
+        return false;
+    };
+    let t = m.frame;
+    let next = tr
+        .divisions()
+        .find(|d| d.frame > t)
+        .map(|d| (d.frame, d.parent));
+    if left && t > 0 {
+        cx.send(Command::SeekMovieFrame(t - 1));
+    }
+    if right {
+        cx.send(Command::SeekMovieFrame(t + 1));
+    }
+    if space {
+        cx.send(Command::PlayMovie(!cx.view.movie_playing));
+    }
+    if let Some((frame, parent)) = next.filter(|_| event) {
+        cx.send(Command::SeekMovieFrame(frame));
+        cx.send(Command::SelectTrack(Some(parent)));
+    }
+    true
+}
+
+/// Escape, fit and help: the same on a still and a movie.
+fn frame_view_keys(cx: &mut Ctx, escape: bool, fit: bool, help: bool) {
+    if escape {
+        if cx.view.show_help {
+            cx.view.show_help = false;
+        } else {
+            cx.view.canvas.cancel_polygon();
+        }
+    }
+    if fit {
+        cx.view.canvas.refit();
+    }
+    if help {
+        cx.view.show_help = !cx.view.show_help;
     }
 }
 

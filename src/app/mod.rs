@@ -209,7 +209,8 @@ impl TopoApp {
         self.poll_correction(ctx.input(|i| i.pointer.any_down()));
         self.request_map();
         self.tick(dt);
-        if self.view.playing {
+        self.tick_movie(dt);
+        if self.view.playing || self.view.movie_playing {
             ctx.request_repaint();
         }
     }

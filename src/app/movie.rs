@@ -18,6 +18,10 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{channel, Receiver};
 use std::sync::Arc;
 
+/// Seconds a frame of a playing movie stays on screen: five frames a second, slow
+/// enough to follow a cell from frame to frame.
+const MOVIE_FRAME_S: f64 = 0.2;
+
 /// The movie of a document: its frames, the one on screen, what tracking found.
 #[derive(Clone, Debug)]
 pub struct MovieDoc {
@@ -153,6 +157,16 @@ impl TopoApp {
                 self.view.follow_tracking = false;
                 self.show_movie_frame(t);
             }
+            Command::PlayMovie(on) => {
+                let Some(m) = &self.doc.movie else { return };
+                // Play from the start again once at the end.
+                if on && m.frame + 1 >= m.movie.len() {
+                    self.show_movie_frame(0);
+                }
+                self.view.playing = false;
+                self.view.follow_tracking = false;
+                (self.view.movie_playing, self.view.movie_clock) = (on, 0.0);
+            }
             Command::Track => self.track_again(false),
             Command::TrackConfirmed => self.track_again(true),
             Command::ContinueTrack => self.continue_tracking(),
@@ -219,6 +233,22 @@ impl TopoApp {
         self.view.selected = None;
         self.view.selected_contour = None;
         self.view.selected_track = None;
+    }
+
+    /// Advances the playing movie a frame every [`MOVIE_FRAME_S`] seconds; stops at its
+    /// last frame.
+    pub(super) fn tick_movie(&mut self, dt: f64) {
+        let Some(m) = self.doc.movie.as_ref().filter(|_| self.view.movie_playing) else {
+            return;
+        };
+        let (t, last) = (m.frame, m.movie.len() - 1);
+        self.view.movie_clock += dt;
+        if self.view.movie_clock < MOVIE_FRAME_S {
+            return;
+        }
+        self.view.movie_clock = 0.0;
+        self.show_movie_frame((t + 1).min(last));
+        self.view.movie_playing = t + 1 < last && self.status.error.is_none();
     }
 
     /// Shows frame `t` of the movie: its image (the shapes stay, the run starts again).

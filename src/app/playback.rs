@@ -206,6 +206,7 @@ impl TopoApp {
         }
         match c {
             Command::Play => {
+                self.view.movie_playing = false;
                 if self.ensure_run() {
                     self.view.playing = true;
                 } else if let Some(p) = self.jobs.preparing.as_mut() {

@@ -57,6 +57,10 @@ pub struct ViewState {
     pub selected_contour: Option<u32>,
     /// Playback is running.
     pub playing: bool,
+    /// The movie's frames are playing (apart from the evolution's playing).
+    pub movie_playing: bool,
+    /// Seconds since the movie's last frame advanced.
+    pub(super) movie_clock: f64,
     pub(super) play_clock: f64,
     /// The help window is open.
     pub show_help: bool,

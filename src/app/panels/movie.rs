@@ -13,8 +13,17 @@ pub(in crate::app) fn movie_bar(cx: &mut Ctx, ui: &mut egui::Ui) {
     let (frames, shown) = (m.movie.len(), m.frame);
     ui.horizontal(|ui| {
         ui.label("Movie");
+        let playing = cx.view.movie_playing;
+        let (icon, tip) = if playing {
+            ("Pause movie", "pause the movie (Space on a tracked movie)")
+        } else {
+            ("Play movie", "play the movie's frames, five a second (Space on a tracked movie)")
+        };
+        if ui.button(icon).on_hover_text(tip).clicked() {
+            cx.send(Command::PlayMovie(!playing));
+        }
         let mut t = shown;
-        let w = ui.available_width() - 420.0;
+        let w = ui.available_width() - 450.0;
         ui.spacing_mut().slider_width = w.max(120.0);
         if ui
             .add(egui::Slider::new(&mut t, 0..=frames - 1).text("movie frame"))
