@@ -343,6 +343,54 @@ fn closing_with_a_tracking_not_exported_asks_first() {
 }
 
 #[test]
+fn a_tracked_frame_lists_and_exports_its_cells_by_track() {
+    let mut h = tracked_movie("table", &dividing_rod());
+    h.state_mut().send(Command::SeekMovieFrame(5));
+    h.step();
+    h.step();
+    h.get_by_label("2 cells in movie frame 5");
+    let csv = temp("tracks.csv");
+    h.state_mut()
+        .send(Command::Export(topocontour::app::Format::Csv, csv.clone()));
+    h.step();
+    assert_no_error(&h);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let rows: Vec<&str> = text.lines().collect();
+    assert_eq!(rows[0], "track,frame,area_px,centroid_x,centroid_y,parent");
+    assert_eq!(rows.len(), 1 + 4 + 2 * 4, "every frame's cells: {text}");
+    assert!(
+        rows[5].starts_with("2,4,") && rows[5].ends_with(",1"),
+        "{}",
+        rows[5]
+    );
+    let labels = temp("frame5.labels.tif");
+    h.state_mut().send(Command::Export(
+        topocontour::app::Format::Labels,
+        labels.clone(),
+    ));
+    h.step();
+    assert_no_error(&h);
+    let img = image::open(&labels).unwrap().into_luma16();
+    let mut seen: Vec<u16> = img.pixels().map(|p| p.0[0]).collect();
+    seen.sort_unstable();
+    seen.dedup();
+    assert_eq!(seen, [0, 2, 3], "the frame's cells by track");
+    h.state_mut().send(Command::Export(
+        topocontour::app::Format::Svg,
+        temp("f.svg"),
+    ));
+    h.step();
+    let err = h
+        .state()
+        .status
+        .error
+        .as_ref()
+        .expect("refused")
+        .to_string();
+    assert!(err.contains("Measurements CSV"), "{err}");
+}
+
+#[test]
 fn a_bad_movie_is_refused_with_one_line() {
     let dir = movie_folder("short", &dividing_rod()[..1]);
     let mut app = TopoApp::default();

@@ -77,7 +77,7 @@ impl TopoApp {
                 self.status.error = None;
                 self.status.notice = (info.pages > 1).then(|| {
                     format!(
-                        "{} holds {} pages: page 1 is shown (choose another under Image)",
+                        "{} holds {} pages: page 1 is shown (choose another under Image; a time-lapse opens as a movie with Movie ▸ Open movie)",
                         doc.image_name, info.pages
                     )
                 });
@@ -322,6 +322,17 @@ impl TopoApp {
     /// Writes the frame on screen (the evolver's state at it) to `path`.
     fn export(&mut self, format: Format, path: &Path) -> Result<(), AppError> {
         let doc = &self.doc;
+        if let Some(m) = doc.movie.as_ref().filter(|_| doc.run.is_none()) {
+            if let Some(bytes) = self.tracked_export(format, path)? {
+                let inputs: Vec<_> = m
+                    .movie
+                    .files()
+                    .into_iter()
+                    .map(|p| (p, "movie frame"))
+                    .collect();
+                return Ok(OutputFiles::prepare_for(&inputs, &[path])?.commit(vec![bytes])?);
+            }
+        }
         let (Some(run), Some(image)) = (&doc.run, &doc.image) else {
             return Err(AppError::NothingToExport);
         };

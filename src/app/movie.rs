@@ -539,13 +539,7 @@ impl TopoApp {
         let (w, h) = m.movie.size();
         let mut written = Vec::with_capacity(tr.frames.len());
         for f in &tr.frames {
-            let rings: Vec<(u32, &[crate::geometry::Point])> = f
-                .objects
-                .iter()
-                .map(|o| (o.track, o.ring.as_slice()))
-                .collect();
-            let bytes = ctc::label_image(&label_raster(&rings, w, h), w, h, true)
-                .ok_or_else(|| super::AppError::Movie("more than 65,535 tracks".into()))?;
+            let bytes = track_labels(f, w, h, true)?;
             let name = ctc::mask_name(f.frame, m.movie.len());
             crate::io::write_atomic(&dir.join(&name), &bytes)?;
             written.push(name);
@@ -554,4 +548,54 @@ impl TopoApp {
         ctc::remove_stale_masks(dir, &written).map_err(io)?;
         Ok(tr.frames.len())
     }
+
+    /// On a tracked frame (no run on screen), what Export writes: Measurements CSV the
+    /// tracks' rows of every frame tracked (as `track --tracks-csv`), a label image the
+    /// frame's cells by track number (as its CTC mask). None when not a tracked frame.
+    pub(super) fn tracked_export(
+        &self,
+        format: crate::io::Format,
+        path: &Path,
+    ) -> Result<Option<Vec<u8>>, super::AppError> {
+        let Some(m) = &self.doc.movie else {
+            return Ok(None);
+        };
+        let (Some(f), Some(tr)) = (m.tracked_frame(), m.tracking.as_ref()) else {
+            return Ok(None);
+        };
+        let (w, h) = m.movie.size();
+        match format {
+            crate::io::Format::Csv => {
+                let mut csv = String::from(ctc::CSV_HEADER);
+                for f in &tr.frames {
+                    csv.push_str(&ctc::csv_rows(f, &tr.lineage));
+                }
+                Ok(Some(csv.into_bytes()))
+            }
+            crate::io::Format::Labels => {
+                format.check_name(path)?;
+                Ok(Some(track_labels(f, w, h, crate::io::export::is_tiff(path))?))
+            }
+            _ => Err(super::AppError::Movie(format!(
+                "a tracked frame exports as Measurements CSV (every frame's cells by track) or a label image (this frame's cells by track); {} needs the frame's run: Edit it or Step",
+                format.name()
+            ))),
+        }
+    }
+}
+
+/// The cells of `f` as a 16-bit label image by track number (TIFF or PNG).
+fn track_labels(
+    f: &TrackedFrame,
+    w: usize,
+    h: usize,
+    tiff: bool,
+) -> Result<Vec<u8>, super::AppError> {
+    let rings: Vec<(u32, &[crate::geometry::Point])> = f
+        .objects
+        .iter()
+        .map(|o| (o.track, o.ring.as_slice()))
+        .collect();
+    ctc::label_image(&label_raster(&rings, w, h), w, h, tiff)
+        .ok_or_else(|| super::AppError::Movie("more than 65,535 tracks".into()))
 }

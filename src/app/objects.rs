@@ -48,7 +48,9 @@ pub(super) fn objects_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
         .default_open(true)
         .show(ui, |ui| {
             let Some(rec) = cx.doc.shown_record() else {
-                ui.label("No contours yet: play or step the evolution.");
+                if !tracked_ui(cx, ui) {
+                    ui.label("No contours yet: play or step the evolution.");
+                }
                 return;
             };
             let rows = cx.view.objects.rows(rec);
@@ -104,4 +106,68 @@ fn rows_ui(
         ui.end_row();
     }
     clicked
+}
+
+/// On a tracked movie frame (no run on screen) the table lists its cells by track, with
+/// the parent of each; a click selects the track. Whether there was one.
+fn tracked_ui(cx: &mut Ctx, ui: &mut egui::Ui) -> bool {
+    let Some(m) = cx.doc.movie.as_ref() else {
+        return false;
+    };
+    let (Some(f), Some(tr)) = (m.tracked_frame(), m.tracking.as_ref()) else {
+        return false;
+    };
+    // A cell seen in two pieces (sisters taken back) is one row per piece, both its track.
+    let rings: Vec<(u32, bool, &[crate::geometry::Point])> = f
+        .objects
+        .iter()
+        .enumerate()
+        .map(|(k, o)| (k as u32, false, o.ring.as_slice()))
+        .collect();
+    let rows = regions_of_rings(&rings);
+    ui.label(format!(
+        "{} in movie frame {}",
+        crate::cli::counted(rows.len(), "cell"),
+        f.frame
+    ))
+    .on_hover_text("the tracked cells of the frame on screen: area and perimeter in pixels, circularity 4πA/P² (1 for a disk)");
+    let selected = cx.view.selected_track;
+    let mut clicked = None;
+    egui::ScrollArea::vertical()
+        .id_salt("cells")
+        .max_height(220.0)
+        .show(ui, |ui| {
+            egui::Grid::new("cell table")
+                .striped(true)
+                .num_columns(5)
+                .show(ui, |ui| {
+                    for h in ["track", "parent", "area px²", "perimeter px", "circularity"] {
+                        ui.strong(h);
+                    }
+                    ui.end_row();
+                    for r in &rows {
+                        let track = f.objects[r.id.0 as usize].track;
+                        let on = selected == Some(track);
+                        if ui
+                            .selectable_label(on, format!("{track}"))
+                            .on_hover_text("select this track (canvas and lineage view)")
+                            .clicked()
+                        {
+                            clicked = Some((!on).then_some(track));
+                        }
+                        match tr.lineage.get(track).map(|t| t.parent).filter(|&p| p != 0) {
+                            Some(p) => ui.label(format!("{p}")),
+                            None => ui.label("–"),
+                        };
+                        ui.label(format!("{:.1}", r.area));
+                        ui.label(format!("{:.1}", r.perimeter));
+                        ui.label(format!("{:.3}", r.circularity));
+                        ui.end_row();
+                    }
+                });
+        });
+    if let Some(t) = clicked {
+        cx.send(Command::SelectTrack(t));
+    }
+    true
 }

@@ -152,6 +152,14 @@ impl Movie {
         (self.width, self.height)
     }
 
+    /// The files the movie is read from (outputs must never replace one).
+    pub fn files(&self) -> Vec<&Path> {
+        match &self.source {
+            Source::Stack(p) => vec![p.as_path()],
+            Source::Files(v) => v.iter().map(PathBuf::as_path).collect(),
+        }
+    }
+
     /// The movie's name as given (for messages).
     pub fn name(&self) -> &str {
         &self.name

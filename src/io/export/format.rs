@@ -57,8 +57,8 @@ const IMAGE_EXTENSIONS: [&str; 9] = [
     "png", "tif", "tiff", "jpg", "jpeg", "bmp", "gif", "webp", "j2k",
 ];
 
-/// Whether `path` ends in .tif or .tiff.
-fn is_tiff(path: &Path) -> bool {
+/// Whether `path` ends in .tif or .tiff (a mask or label image is then TIFF, else PNG).
+pub fn is_tiff(path: &Path) -> bool {
     extension(path).is_some_and(|e| e == "tif" || e == "tiff")
 }
 

@@ -10,7 +10,7 @@ mod json;
 mod raster;
 mod svg;
 
-pub use format::{ExportError, Format};
+pub use format::{is_tiff, ExportError, Format};
 
 use crate::contours::ContourSet;
 use crate::evolution::{Evolver, FrameEvent};
