@@ -178,6 +178,22 @@ fn the_movie_slider_shows_frames_and_track_runs_with_cancel() {
         h.step();
     }
     assert!(!h.ctx.has_requested_repaint());
+    // Continued, it is the tracking that ran on (its stopped tracker, not one rebuilt
+    // from the last contours): the same as one never stopped.
+    let stopped = tr.stopped.as_ref().expect("the stopped tracker is kept");
+    assert_eq!(stopped.next_frame(), n);
+    click_label(&mut h, "Continue tracking");
+    wait_for_tracking(&mut h);
+    let continued = tracking(&h);
+    assert!(continued.complete);
+    click_label(&mut h, "Track again");
+    wait_for_tracking(&mut h);
+    let whole = tracking(&h);
+    assert_eq!(whole.frames.len(), 150);
+    for (a, b) in continued.frames.iter().zip(&whole.frames) {
+        assert_eq!(a, b, "frame {}", a.frame);
+    }
+    assert_eq!(continued.lineage, whole.lineage);
 }
 
 #[test]

@@ -154,6 +154,7 @@ impl TopoApp {
         tr.frames.truncate(t);
         tr.frames.push(frame.clone());
         tr.lineage = lineage.clone();
+        tr.stopped = None;
         tr.corrected.retain(|&f| f < t);
         tr.corrected.insert(t);
         tr.complete = t + 1 == len;

@@ -54,6 +54,10 @@ pub struct Tracking {
     pub corrected: BTreeSet<usize>,
     /// A job was tracking into it (Undo back to it takes tracking up again).
     pub running: bool,
+    /// The tracker as Cancel stopped it after the last frame: Continue goes on with it,
+    /// so a cancelled and continued tracking is the one that ran on. None after a
+    /// correction (the frames after it start from the corrected contours).
+    pub stopped: Option<Arc<Tracker>>,
 }
 
 /// A new [`Tracking::id`].
@@ -95,6 +99,8 @@ enum Message {
     Frame(Arc<TrackedFrame>, Lineage, Arc<Field>),
     /// A frame could not be read or tracked.
     Failed(String),
+    /// Cancel stopped the tracker (after the frame last sent).
+    Stopped(Box<Tracker>),
 }
 
 /// Frames kept in memory for the slider, at most (about 0.5 GB of 512² frames): beyond,
@@ -360,10 +366,19 @@ impl TopoApp {
         }
         tr.running = true;
         let (id, from) = (tr.id, last.frame + 1);
-        let tracker = Tracker::resume(settings, tr.lineage.clone(), &last, w, h);
+        // The stopped tracker goes on as if never stopped; without one (Undo back to a
+        // result still being tracked) it resumes from the last frame's contours.
+        let tracker = match tr.stopped.take().filter(|t| t.next_frame() == from) {
+            Some(t) => Arc::unwrap_or_clone(t),
+            None => Tracker::resume(settings.clone(), tr.lineage.clone(), &last, w, h),
+        };
+        let changed = self.doc.params() != &settings.params;
         self.spawn_tracking(tracker, from, id);
-        self.status
-            .notify(format!("tracking on from frame {from}…"));
+        self.status.notify(if changed {
+            format!("tracking on from frame {from} with the settings it started with (Track again uses the new ones)…")
+        } else {
+            format!("tracking on from frame {from}…")
+        });
     }
 
     /// Tracks the movie's frames from `from` on with `tracker` on a thread, into the
@@ -395,7 +410,8 @@ impl TopoApp {
             }
             for image in frames {
                 if stop.load(Ordering::SeqCst) {
-                    break;
+                    let _ = tx.send(Message::Stopped(Box::new(tracker)));
+                    return wake();
                 }
                 let step = image
                     .map_err(|e| e.to_string())
@@ -466,6 +482,17 @@ impl TopoApp {
                     newest = Some((t, image));
                 }
                 Message::Failed(e) => failure = Some(e),
+                Message::Stopped(tracker) => {
+                    let same = self
+                        .doc
+                        .movie
+                        .as_mut()
+                        .and_then(|m| m.tracking.as_mut())
+                        .filter(|tr| tr.id == job.tracking);
+                    if let Some(tr) = same {
+                        tr.stopped = Some(Arc::new(*tracker));
+                    }
+                }
             }
         }
         let (done, total) = (job.done, job.total);

@@ -246,6 +246,11 @@ impl Tracker {
         self.previous = Some(image);
     }
 
+    /// The frame the next [`Tracker::step`] tracks (0-based).
+    pub fn next_frame(&self) -> usize {
+        self.frame
+    }
+
     /// The tracks so far.
     pub fn lineage(&self) -> &Lineage {
         &self.lineage
