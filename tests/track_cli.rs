@@ -107,6 +107,71 @@ fn bad_movies_are_refused_before_any_output() {
     assert!(!out.exists());
 }
 
+/// Six 80×64 pages of a disk moving right, the first described as ImageJ does
+/// (`description`).
+fn imagej_movie(path: &Path, description: &str) {
+    let mut enc = TiffEncoder::new(std::fs::File::create(path).unwrap()).unwrap();
+    for t in 0..6 {
+        let cx = 30.0 + 2.0 * t as f64;
+        let data: Vec<u16> = (0..80 * 64)
+            .map(|i| {
+                let (x, y) = ((i % 80) as f64 + 0.5, (i / 80) as f64 + 0.5);
+                if (x - cx).hypot(y - 32.0) < 12.0 {
+                    260
+                } else {
+                    100
+                }
+            })
+            .collect();
+        let mut page = enc.new_image::<Gray16>(80, 64).unwrap();
+        if t == 0 {
+            page.encoder()
+                .write_tag(tiff::tags::Tag::ImageDescription, description)
+                .unwrap();
+        }
+        page.write_data(&data).unwrap();
+    }
+}
+
+#[test]
+fn hyperstacks_and_folders_of_stacks_are_refused_a_plain_imagej_stack_tracks() {
+    let (m, out) = (tmp("hyper.tif"), tmp("hyper-res"));
+    imagej_movie(
+        &m,
+        "ImageJ=1.54f\nimages=6\nslices=3\nframes=2\nhyperstack=true\n",
+    );
+    let run = track(&m, &out);
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("hyperstack of 1 channel(s) × 3 slice(s) × 2 frame(s)"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    // ImageJ states a plain stack's pages as slices: that is a movie.
+    let (m, out) = (tmp("plain.tif"), tmp("plain-res"));
+    imagej_movie(&m, "ImageJ=1.54f\nimages=6\nslices=6\n");
+    tracked(&track(&m, &out), &out, "1 0 5 0\n");
+    // A folder whose frames are stacks themselves.
+    let dir = tmp("stacks");
+    std::fs::create_dir_all(&dir).unwrap();
+    for k in 0..2 {
+        movie(
+            &dir.join(format!("f{k}.tif")),
+            &[(80, 64), (80, 64), (80, 64)],
+        );
+    }
+    let out = tmp("stacks-res");
+    let run = track(&dir, &out);
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("f0.tif holds 3 pages: a folder movie is one"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}
+
 #[test]
 fn outputs_are_checked_before_tracking_and_a_reused_folder_keeps_no_old_masks() {
     // An overlay into a folder that does not exist: refused before anything is written.

@@ -45,6 +45,27 @@ pub enum MovieError {
         /// Samples per pixel of its page.
         samples: usize,
     },
+    /// An ImageJ hyperstack with channels, or slices and frames: its pages are not one
+    /// plane per time point.
+    #[error("{path} is an ImageJ hyperstack of {channels} channel(s) × {slices} slice(s) × {frames} frame(s): a movie to track is one grey plane per frame (in Fiji, Image ▸ Color ▸ Split Channels and Image ▸ Stacks ▸ Z Project first)")]
+    Hyperstack {
+        /// The movie.
+        path: String,
+        /// Channels.
+        channels: usize,
+        /// Z slices.
+        slices: usize,
+        /// Time points.
+        frames: usize,
+    },
+    /// A file of a folder movie holds several pages.
+    #[error("{path} holds {pages} pages: a folder movie is one single-page image per frame (open a multi-page TIFF as the movie itself)")]
+    PagesInFrame {
+        /// The file.
+        path: String,
+        /// Its pages.
+        pages: usize,
+    },
     /// A frame whose size differs from the first.
     #[error("{path}: frame {frame} is {width}×{height} but frame 1 is {first_width}×{first_height}; every frame of a movie must have the same size")]
     SizeDiffers {
@@ -98,6 +119,33 @@ impl Movie {
             width: 0,
             height: 0,
         };
+        match &movie.source {
+            Source::Stack(p) => {
+                if let Some((channels, slices, frames)) = super::tiff_info::imagej_dimensions(p) {
+                    // A plain ImageJ stack states its pages as slices: only two axes
+                    // at once are refused.
+                    if channels > 1 || (slices > 1 && frames > 1) {
+                        return Err(MovieError::Hyperstack {
+                            path: movie.name,
+                            channels,
+                            slices,
+                            frames,
+                        });
+                    }
+                }
+            }
+            Source::Files(files) => {
+                for f in files {
+                    let pages = super::tiff_info::pages_of(f);
+                    if pages > 1 {
+                        return Err(MovieError::PagesInFrame {
+                            path: f.display().to_string(),
+                            pages,
+                        });
+                    }
+                }
+            }
+        }
         let mut frames = 0;
         // Every page decoded once here, so a bad one stops the run before any output; not
         // normalised, which only the run needs.

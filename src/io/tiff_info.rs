@@ -119,6 +119,38 @@ fn pixel_size(dec: &mut Decoder<Cursor<&[u8]>>) -> Option<PixelSize> {
     })
 }
 
+/// The (channels, slices, frames) an ImageJ TIFF's description states (1 for each one
+/// not stated); None for a TIFF ImageJ did not write, or no TIFF.
+pub fn imagej_dimensions(path: &std::path::Path) -> Option<(usize, usize, usize)> {
+    let file = std::fs::File::open(path).ok()?;
+    let mut dec = Decoder::new(std::io::BufReader::new(file)).ok()?;
+    let d = dec.get_tag_ascii_string(Tag::ImageDescription).ok()?;
+    if !d.starts_with("ImageJ=") {
+        return None;
+    }
+    let get = |key: &str| {
+        d.lines()
+            .find_map(|l| l.strip_prefix(key)?.trim().parse().ok())
+            .unwrap_or(1)
+    };
+    Some((get("channels="), get("slices="), get("frames=")))
+}
+
+/// Pages of the TIFF at `path` (1 for any other image).
+pub fn pages_of(path: &std::path::Path) -> usize {
+    let tiff = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("tif") || e.eq_ignore_ascii_case("tiff"));
+    if !tiff {
+        return 1;
+    }
+    std::fs::read(path)
+        .ok()
+        .and_then(|b| tiff_info(&b))
+        .map_or(1, |(pages, _)| pages)
+}
+
 /// Samples per pixel of the first page of the TIFF at `path` (3 for RGB), if it reads.
 pub fn first_page_samples(path: &std::path::Path) -> Option<usize> {
     let file = std::fs::File::open(path).ok()?;
