@@ -77,7 +77,7 @@ impl TopoApp {
                 self.status.error = None;
                 self.status.notice = (info.pages > 1).then(|| {
                     format!(
-                        "{} holds {} pages: page 1 is shown (choose another under Image; a time-lapse opens as a movie with Movie ▸ Open movie)",
+                        "{} holds {} pages: page 1 is shown (choose another under Image; a time-lapse opens as a movie with Movie > Open movie)",
                         doc.image_name, info.pages
                     )
                 });

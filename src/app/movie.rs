@@ -313,7 +313,7 @@ impl TopoApp {
     fn start_tracking(&mut self) {
         let Some(m) = &self.doc.movie else {
             self.status
-                .notify("open a movie first (Movie ▸ Open movie…)".into());
+                .notify("open a movie first (Movie > Open movie…)".into());
             return;
         };
         if self.jobs.track.is_some() {

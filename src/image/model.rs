@@ -2,7 +2,8 @@
 //!
 //! One chain turns an image into what the forces see: the kind of image
 //! ([`super::modality`]: phase contrast has its halo clipped), the Gaussian pyramid of
-//! seed 004 §2 ([`super::field`]), the two-class intensity model learnt from Otsu's
+//! seed 004 §2 ([`super::field`]; no deeper than the objects stay resolved,
+//! [`COARSE_HALF_WIDTH`]), the two-class intensity model learnt from Otsu's
 //! split and the medians under the user's shapes ([`super::intensity`],
 //! [`super::hints`]), and per pyramid level the local decision level of the region term
 //! ([`super::local`]). The evolver, the automatic seeds and every later model kind start
@@ -22,7 +23,7 @@ use super::hints::hints;
 use super::intensity::{IntensityModel, Polarity};
 use super::local::{decision_field, Decision, LevelRule};
 use super::modality::{for_modality, Modality};
-use super::scale::object_scale;
+use super::scale::{half_width, RADIUS_RANGE};
 use super::stored::Stored;
 use crate::geometry::Point;
 use crate::shape::Shape;
@@ -30,6 +31,19 @@ use std::sync::OnceLock;
 
 /// Most levels of the pyramid.
 pub const PYRAMID_LEVELS: usize = 4;
+
+/// Half-width (2A/P) the objects keep at the coarsest level, pixels at least: a coarser
+/// level is dropped. Objects narrower than a coarse pixel average away there, and a
+/// contour on them dies before the finer levels see them (a 512² grid of dots of radius
+/// 5 gave no object at all from four levels). Seed 004 §2 leaves the depth open; the
+/// object scale decides it. Two pixels cost tracking's noisy movies divisions (the
+/// coarse levels smooth the first moves); one keeps them (docs/decisions.md, 2026-12-05).
+pub const COARSE_HALF_WIDTH: f64 = 1.0;
+
+/// Levels whose coarsest still shows objects of half-width `hw` at [`COARSE_HALF_WIDTH`].
+fn resolvable_levels(hw: f64) -> usize {
+    1 + (hw / COARSE_HALF_WIDTH).max(1.0).log2().floor() as usize
+}
 
 /// What [`ImageModel::prepare`] is told (the image's part of an evolution's `Params`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -129,7 +143,7 @@ impl ImageModel {
     }
 
     /// The model over `pyramid`: the two-class model and the decision levels.
-    fn finish(pyramid: Pyramid, params: &ModelParams, shapes: &[Shape]) -> Self {
+    fn finish(mut pyramid: Pyramid, params: &ModelParams, shapes: &[Shape]) -> Self {
         let fine = &pyramid.levels[0].image;
         let (width, height) = (fine.width, fine.height);
         let hint = hints(fine, shapes, params.outline_hints);
@@ -137,10 +151,13 @@ impl ImageModel {
         if let Some(o) = hint.outlined {
             global = global.beside_outlined(o);
         }
+        let hw = half_width(fine, &global);
+        pyramid.levels.truncate(resolvable_levels(hw));
+        let fine = &pyramid.levels[0].image;
         let (radius, rule, decision) = if params.local {
             let radius = params
                 .local_radius
-                .unwrap_or_else(|| object_scale(fine, &global));
+                .unwrap_or_else(|| hw.clamp(RADIUS_RANGE.0, RADIUS_RANGE.1));
             let rule = LevelRule::new(fine, &global, params.modality);
             let cells = pyramid.levels.iter().map(|_| OnceLock::new()).collect();
             (Some(radius), Some(rule), cells)
@@ -342,6 +359,54 @@ mod tests {
             coarsest_side: 16,
             ..ModelParams::seeds(polarity, modality)
         }
+    }
+
+    /// The pyramid stops where the objects would average away: dots of radius 5 every
+    /// 16 px keep three levels (they vanished at the fourth, 1/8 scale, and a seed
+    /// clicked on one died there), large disks all four; a seed on a dot finds it.
+    #[test]
+    fn the_pyramid_is_no_deeper_than_the_objects_stay_resolved() {
+        let n = 512;
+        let dots = Field::new(
+            n,
+            n,
+            (0..n * n)
+                .map(|i| {
+                    let (x, y) = ((i % n) % 16, (i / n) % 16);
+                    let d2 = (x as i64 - 8).pow(2) + (y as i64 - 8).pow(2);
+                    if d2 <= 25 {
+                        0.15
+                    } else {
+                        0.8
+                    }
+                })
+                .collect(),
+        );
+        let params = ModelParams {
+            coarsest_side: 64,
+            ..ModelParams::seeds(Polarity::Dark, Modality::Generic)
+        };
+        assert_eq!(ImageModel::prepare(&dots, &params, &[]).levels(), 3);
+        let big = disks(512, 512);
+        let params = ModelParams {
+            coarsest_side: 64,
+            ..ModelParams::seeds(Polarity::Bright, Modality::Generic)
+        };
+        assert_eq!(ImageModel::prepare(&big, &params, &[]).levels(), 4);
+        let seed = Shape::Disk {
+            center: Point::new(40.5, 40.5),
+            radius: 3.0,
+        };
+        let run = crate::evolution::Params {
+            polarity: Polarity::Dark,
+            ..Default::default()
+        };
+        let mut ev = crate::evolution::Evolver::new(&dots, &[seed], run).unwrap();
+        ev.run();
+        ev.filter_clutter();
+        let found = crate::contours::measure::regions(ev.contours());
+        assert_eq!(found.len(), 1, "the dot is found");
+        assert!((found[0].area - 78.5).abs() < 15.0, "{}", found[0].area);
     }
 
     /// The seeds and a run without shapes read the same full-resolution level: the
