@@ -213,6 +213,7 @@ fn a_division_is_listed_in_the_event_log_and_a_click_shows_its_frame() {
     h.state_mut().send(Command::SeekMovieFrame(0));
     h.step();
     assert_eq!(movie_frame(&h), 0);
+    h.step(); // laid out for frame 0 (its cell table is shorter than frame 7's)
     click_label(&mut h, "cell 1 divided into 2 and 3 at frame 4");
     assert_eq!(movie_frame(&h), 4);
     assert_eq!(h.state().view.selected_track, Some(1));
@@ -337,7 +338,7 @@ fn the_tracking_result_exports_in_the_ctc_layout() {
 fn closing_with_a_tracking_not_exported_asks_first() {
     let mut h = tracked_movie("close", &dividing_rod());
     assert!(!close_window(&mut h));
-    h.get_by_label("The tracking of 8 frames is not exported.");
+    h.get_by_label("The tracking of 8 frames is not saved.");
     click_label(&mut h, "Cancel");
     let out = temp("close-ctc");
     let _ = std::fs::remove_dir_all(&out);
@@ -505,6 +506,61 @@ fn a_wrong_split_undone_by_hand_tracks_the_frames_after_it_again() {
     let back = tracking(&h);
     assert_eq!(back.lineage.ctc_text(), before.lineage.ctc_text());
     assert!(back.corrected.is_empty());
+}
+
+#[test]
+fn a_tracked_and_corrected_movie_saved_as_a_session_reopens_as_it_was() {
+    let mut h = tracked_rod("session", 4);
+    click_label(&mut h, "Brush");
+    h.step();
+    drag(&mut h, Point::new(38.0, 32.0), Point::new(60.0, 32.0));
+    wait_for_tracking(&mut h);
+    click_label(&mut h, "Select");
+    h.state_mut().send(Command::SeekMovieFrame(6));
+    h.step();
+    let saved = tracking(&h);
+    assert_eq!(saved.corrected.iter().copied().collect::<Vec<_>>(), [4]);
+    assert!(!close_window(&mut h), "not saved yet");
+    click_label(&mut h, "Cancel");
+    let path = save_session(&mut h, "movie.session.json");
+    assert!(close_window(&mut h), "saved");
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.contains("\"format\": \"topocontour-tracking\""));
+    let mut again = harness(TopoApp::default());
+    again.state_mut().send(Command::OpenSession(path.clone()));
+    again.step();
+    again.step();
+    assert_no_error(&again);
+    let opened = tracking(&again);
+    assert_eq!(opened.frames, saved.frames);
+    assert_eq!(opened.lineage, saved.lineage);
+    assert_eq!(opened.corrected, saved.corrected);
+    assert!(opened.complete);
+    assert_eq!(movie_frame(&again), 6, "the frame that was on screen");
+    again.get_by_label_contains("corrected: 4");
+    assert!(
+        close_window(&mut again),
+        "nothing changed since it was opened"
+    );
+    // A damaged session is one error, nothing opened.
+    std::fs::write(
+        &path,
+        text.replace(
+            "\"corrected\": [\n    4\n  ]",
+            "\"corrected\": [\n    40\n  ]",
+        ),
+    )
+    .unwrap();
+    let mut bad = harness(TopoApp::default());
+    bad.state_mut().send(Command::OpenSession(path));
+    bad.step();
+    let e = bad.state().status.error.as_ref().map(|e| e.to_string());
+    assert!(
+        e.as_deref()
+            .is_some_and(|e| e.contains("frame 40 corrected but not tracked")),
+        "{e:?}"
+    );
+    assert!(bad.state().doc.movie.is_none());
 }
 
 #[test]

@@ -139,8 +139,8 @@ impl TopoApp {
             }
             Command::SaveSession(p) => match self.save_session(&p) {
                 Ok(()) => {
-                    // A movie's session keeps the frame on screen, not the tracking.
-                    self.unsaved &= self.doc.movie.is_some();
+                    // Saved, unless tracking still adds frames after it.
+                    self.unsaved &= self.jobs.track.is_some();
                     self.status
                         .notify(format!("session saved to {}", p.display()))
                 }
@@ -200,7 +200,7 @@ impl TopoApp {
                 n => format!(" and your corrections on {}", counted(n, "frame")),
             };
             return Some(format!(
-                "The tracking of {}{corrected} is not exported.",
+                "The tracking of {}{corrected} is not saved.",
                 counted(tr.frames.len(), "frame")
             ));
         }
@@ -213,8 +213,11 @@ impl TopoApp {
         made.then(|| "Your seeds, shapes, edits and settings are not saved as a session.".into())
     }
 
-    /// Writes the session of the frame on screen.
+    /// Writes the session of the frame on screen (of a movie: its tracking).
     fn save_session(&mut self, path: &Path) -> Result<(), AppError> {
+        if self.doc.movie.is_some() {
+            return self.save_tracking_session(path);
+        }
         let doc = &self.doc;
         let (Some(image), Some(image_path)) = (&doc.image, &doc.image_path) else {
             return Err(AppError::SampleHasNoFile);
@@ -274,6 +277,12 @@ impl TopoApp {
     /// edits at their frames, where it stopped — driven through a run that records every
     /// frame ([`crate::job::Job::drive`], as `topocontour replay` runs it).
     fn open_session(&mut self, path: &Path) -> Result<(), AppError> {
+        if let Some(t) =
+            crate::io::tracking_session::TrackingSession::open(path).map_err(AppError::Movie)?
+        {
+            self.open_tracking_session(t);
+            return Ok(());
+        }
         let s = crate::io::session::Session::read(path)?;
         let job = s.job(path, None);
         self.open_image(job.image.clone());

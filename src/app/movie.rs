@@ -205,13 +205,16 @@ impl TopoApp {
 
     /// Opens the movie at `path` as a new document on its first frame.
     fn open_movie(&mut self, path: &Path) {
-        let movie = match Movie::open(path) {
-            Ok(m) => m,
-            Err(e) => {
-                self.status.error = Some(super::AppError::Movie(e.to_string()));
-                return;
-            }
-        };
+        match Movie::open(path) {
+            Ok(m) => self.show_movie(m),
+            Err(e) => self.status.error = Some(super::AppError::Movie(e.to_string())),
+        }
+    }
+
+    /// `movie`, opened, as a new document on its first frame.
+    pub(super) fn show_movie(&mut self, movie: Movie) {
+        let path = movie.path().to_path_buf();
+        let path = path.as_path();
         let first = match self.view.frames.get(&movie, 0) {
             Ok(f) => f,
             Err(e) => {
@@ -574,6 +577,88 @@ impl TopoApp {
         crate::io::write_atomic(&dir.join("res_track.txt"), tr.lineage.ctc_text().as_bytes())?;
         ctc::remove_stale_masks(dir, &written).map_err(io)?;
         Ok(tr.frames.len())
+    }
+
+    /// Writes the movie's session: its tracking as it is (a correction still waiting for
+    /// its question is not in it: refused until answered).
+    pub(super) fn save_tracking_session(&self, path: &Path) -> Result<(), super::AppError> {
+        use crate::io::tracking_session::{
+            MovieRef, TrackingSession, TRACKING_FORMAT, TRACKING_VERSION,
+        };
+        if self.correction_waiting() {
+            return Err(super::AppError::Movie(
+                "the correction of this frame is not in the tracking yet: answer the question first".into(),
+            ));
+        }
+        let m = self.doc.movie.as_ref().expect("a movie document");
+        let tr = m.tracking.as_ref();
+        let (width, height) = m.movie.size();
+        let s = TrackingSession {
+            format: TRACKING_FORMAT.into(),
+            version: TRACKING_VERSION,
+            movie: MovieRef {
+                path: m
+                    .movie
+                    .path()
+                    .canonicalize()
+                    .map_err(|source| super::AppError::Io {
+                        path: m.movie.path().to_path_buf(),
+                        source,
+                    })?,
+                frames: m.movie.len(),
+                width,
+                height,
+            },
+            shown: m.frame,
+            shapes: self.doc.shapes.clone(),
+            settings: tr.and_then(|t| t.settings.clone()),
+            frames: tr.map_or(Vec::new(), |t| {
+                t.frames.iter().map(|f| (**f).clone()).collect()
+            }),
+            tracks: tr.map_or(Vec::new(), |t| t.lineage.tracks().to_vec()),
+            corrected: tr.map_or(Vec::new(), |t| t.corrected.iter().copied().collect()),
+        };
+        let json = s.to_json(path).map_err(super::AppError::Movie)?;
+        let inputs: Vec<_> = m
+            .movie
+            .files()
+            .into_iter()
+            .map(|p| (p, "movie frame"))
+            .collect();
+        crate::io::OutputFiles::prepare_for(&inputs, &[path])?.commit(vec![json.into_bytes()])?;
+        Ok(())
+    }
+
+    /// Opens a movie's session: the movie, its frame-0 shapes and settings, and its
+    /// tracking as it was saved (Continue tracking goes on from a partial one).
+    pub(super) fn open_tracking_session(&mut self, t: crate::io::tracking_session::OpenedTracking) {
+        let s = t.session;
+        self.show_movie(t.movie);
+        if self.status.error.is_some() {
+            return;
+        }
+        self.doc.shapes = s.shapes;
+        if let Some(st) = &s.settings {
+            self.doc.settings.params = st.params.clone();
+            self.doc.settings.mode_chosen = true;
+        }
+        let Some(m) = self.doc.movie.as_mut() else {
+            return;
+        };
+        if s.settings.is_some() {
+            m.tracking = Some(Tracking {
+                id: next_tracking_id(),
+                complete: s.frames.len() == m.movie.len(),
+                frames: s.frames.into_iter().map(Arc::new).collect(),
+                lineage: t.lineage,
+                settings: s.settings,
+                corrected: s.corrected.into_iter().collect(),
+                running: false,
+                stopped: None,
+            });
+        }
+        self.show_movie_frame(s.shown);
+        self.unsaved = false;
     }
 
     /// On a tracked frame (no run on screen), what Export writes: Measurements CSV the

@@ -10,6 +10,7 @@ pub mod roi;
 pub mod samples;
 pub mod session;
 pub mod tiff_info;
+pub mod tracking_session;
 
 pub use atomic::{write_atomic, OutputError, OutputFiles};
 pub use export::{ExportError, Format, Outputs};

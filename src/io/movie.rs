@@ -97,6 +97,8 @@ enum Source {
 #[derive(Clone, Debug)]
 pub struct Movie {
     source: Source,
+    /// The path it was opened from (a TIFF or a folder).
+    path: PathBuf,
     name: String,
     frames: usize,
     width: usize,
@@ -114,6 +116,7 @@ impl Movie {
         };
         let mut movie = Movie {
             source,
+            path: path.to_path_buf(),
             name,
             frames: 0,
             width: 0,
@@ -198,6 +201,11 @@ impl Movie {
     /// Width and height of every frame.
     pub fn size(&self) -> (usize, usize) {
         (self.width, self.height)
+    }
+
+    /// The path it was opened from: the TIFF, or the folder of frames.
+    pub fn path(&self) -> &Path {
+        &self.path
     }
 
     /// The files the movie is read from (outputs must never replace one).

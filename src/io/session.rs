@@ -136,6 +136,29 @@ fn relative_to(base: &Path, target: &Path) -> Option<PathBuf> {
     Some(rel)
 }
 
+/// `target` as a session file at `session_path` stores it: relative to the session
+/// file's folder, or absolute where a relative path would climb to the root (see the
+/// module docs). A path that cannot be resolved stays as it is.
+pub(crate) fn stored_path(session_path: &Path, target: &Path) -> PathBuf {
+    let folder = match session_path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    match (folder.canonicalize(), target.canonicalize()) {
+        (Ok(base), Ok(t)) => relative_to(&base, &t).unwrap_or(t),
+        _ => target.to_path_buf(),
+    }
+}
+
+/// Where a path `stored` in the session file at `session_path` points.
+pub(crate) fn resolved_path(session_path: &Path, stored: &Path) -> PathBuf {
+    if stored.is_absolute() {
+        stored.to_path_buf()
+    } else {
+        session_path.parent().unwrap_or(Path::new(".")).join(stored)
+    }
+}
+
 impl Session {
     /// A session of a run from `shapes` with `params` on the image at `path` (stored as
     /// given; [`Session::stored_at`] makes it relative to the session file).
@@ -217,13 +240,7 @@ impl Session {
     /// session file's folder, or absolute where a relative one would climb to the root
     /// (see the module docs). A path that cannot be resolved stays as it is.
     pub fn stored_at(mut self, session_path: &Path) -> Self {
-        let folder = match session_path.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p,
-            _ => Path::new("."),
-        };
-        if let (Ok(base), Ok(image)) = (folder.canonicalize(), self.image.path.canonicalize()) {
-            self.image.path = relative_to(&base, &image).unwrap_or(image);
-        }
+        self.image.path = stored_path(session_path, &self.image.path);
         self
     }
 
@@ -274,14 +291,7 @@ impl Session {
 
     /// Where the image is, for a session read from `session_path`.
     pub fn image_path(&self, session_path: &Path) -> PathBuf {
-        if self.image.path.is_absolute() {
-            self.image.path.clone()
-        } else {
-            session_path
-                .parent()
-                .unwrap_or(Path::new("."))
-                .join(&self.image.path)
-        }
+        resolved_path(session_path, &self.image.path)
     }
 
     /// The job this session records, on the image at `image` (a moved image) or, with

@@ -3,7 +3,7 @@
 
 /// One track: a cell from the frame it appeared (or was born) to the frame it was last
 /// seen (or divided after).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Track {
     /// The track's label (1, 2, …), also its value in the label images.
     pub label: u32,
@@ -16,7 +16,7 @@ pub struct Track {
 }
 
 /// A division: `parent`'s last frame was `frame − 1`, its two children start at `frame`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Division {
     /// The first frame of the children.
     pub frame: usize,
@@ -89,6 +89,38 @@ impl Lineage {
             .collect();
         let given = tracks.last().map_or(0, |t| t.label);
         Lineage { tracks, given }
+    }
+
+    /// The lineage of saved `tracks` (a session's), checked: labels from 1 in increasing
+    /// order, each within `frames` frames tracked, a parent an earlier track (or 0).
+    pub fn from_tracks(tracks: Vec<Track>, frames: usize) -> Result<Lineage, String> {
+        let mut before = 0;
+        for t in &tracks {
+            if t.label <= before {
+                return Err(format!("track {} is listed out of order", t.label));
+            }
+            if t.first > t.last || t.last >= frames {
+                return Err(format!(
+                    "track {} spans frames {} to {} of {frames} tracked",
+                    t.label, t.first, t.last
+                ));
+            }
+            let parent_known = t.parent == 0
+                || tracks
+                    .binary_search_by_key(&t.parent, |k| k.label)
+                    .is_ok_and(|_| t.parent < t.label);
+            if !parent_known {
+                return Err(format!(
+                    "track {} has no parent track {}",
+                    t.label, t.parent
+                ));
+            }
+            before = t.label;
+        }
+        Ok(Lineage {
+            given: before,
+            tracks,
+        })
     }
 
     /// All tracks, by label.

@@ -97,7 +97,7 @@ pub const MIN_CLAIMED_SHARE: f64 = 0.05;
 pub const COARSE_MIN_HALF_WIDTH: f64 = 4.7;
 
 /// How tracking runs.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TrackSettings {
     /// The evolution's parameters (the mode is set to [`Mode::Track`]).
     pub params: Params,
@@ -136,7 +136,7 @@ impl TrackSettings {
 }
 
 /// One tracked cell in one frame.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TrackedObject {
     /// Its track.
     pub track: u32,
@@ -149,7 +149,7 @@ pub struct TrackedObject {
 }
 
 /// What tracking found in one frame.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TrackedFrame {
     /// The frame (0-based).
     pub frame: usize,

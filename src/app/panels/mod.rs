@@ -73,8 +73,8 @@ fn files_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
         cx.send(Command::Redo);
     }
     ui.menu_button("Session", |ui| {
-        menu_entry(cx, ui, "Save session…", "the image, shapes, parameters, your edits and the frame, to reopen here or replay headless (topocontour replay)", Command::SessionDialog(true));
-        menu_entry(cx, ui, "Open session…", "reopen a saved session: its image, shapes, parameters and edits, run to its frame", Command::SessionDialog(false));
+        menu_entry(cx, ui, "Save session…", "the image, shapes, parameters, your edits and the frame, to reopen here or replay headless (topocontour replay); of a movie: its tracking and your corrections, to reopen here", Command::SessionDialog(true));
+        menu_entry(cx, ui, "Open session…", "reopen a saved session: its image, shapes, parameters and edits, run to its frame; or a movie's tracking as it was saved", Command::SessionDialog(false));
         ui.separator();
         menu_entry(cx, ui, "Apply to folder…", "segment every image of a folder with these shapes (after Find seeds: seeds found in each image) and parameters; JSON and CSV per image and summary.csv go to its topocontour subfolder", Command::ApplyToFolderDialog);
     })

@@ -305,14 +305,13 @@ pub(in crate::app) fn question_ui(cx: &mut Ctx, ctx: &egui::Context) {
             super::super::Question::Quit(what) => {
                 ui.label(what);
                 ui.horizontal(|ui| {
-                    let (save, command) = if cx.doc.movie.is_some() {
-                        ("Export CTC…", Command::ExportCtcDialog)
-                    } else {
-                        ("Save session…", Command::SessionDialog(true))
-                    };
-                    if ui.button(save).clicked() {
+                    if ui.button("Save session…").clicked() {
                         cx.send(Command::CloseQuestion);
-                        cx.send(command);
+                        cx.send(Command::SessionDialog(true));
+                    }
+                    if cx.doc.movie.is_some() && ui.button("Export CTC…").clicked() {
+                        cx.send(Command::CloseQuestion);
+                        cx.send(Command::ExportCtcDialog);
                     }
                     if ui.button("Quit without saving").clicked() {
                         cx.view.quit_confirmed = true;
