@@ -333,13 +333,7 @@ impl TopoApp {
         let doc = &self.doc;
         if let Some(m) = doc.movie.as_ref().filter(|_| doc.run.is_none()) {
             if let Some(bytes) = self.tracked_export(format, path)? {
-                let inputs: Vec<_> = m
-                    .movie
-                    .files()
-                    .into_iter()
-                    .map(|p| (p, "movie frame"))
-                    .collect();
-                return Ok(OutputFiles::prepare_for(&inputs, &[path])?.commit(vec![bytes])?);
+                return super::movie::write_beside(&m.movie, path, bytes);
             }
         }
         let (Some(run), Some(image)) = (&doc.run, &doc.image) else {

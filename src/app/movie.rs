@@ -466,13 +466,7 @@ impl TopoApp {
                     job.done += 1;
                     let t = f.frame;
                     self.view.frames.put(t, image.clone());
-                    let same = self
-                        .doc
-                        .movie
-                        .as_mut()
-                        .and_then(|m| m.tracking.as_mut())
-                        .filter(|tr| tr.id == job.tracking);
-                    if let Some(tr) = same {
+                    if let Some(tr) = tracking_with(&mut self.doc, job.tracking) {
                         tr.frames.truncate(t);
                         // This frame may take back the divisions of the one before.
                         if let Some(before) = tr.frames.last_mut().filter(|_| !f.undone.is_empty())
@@ -486,13 +480,7 @@ impl TopoApp {
                 }
                 Message::Failed(e) => failure = Some(e),
                 Message::Stopped(tracker) => {
-                    let same = self
-                        .doc
-                        .movie
-                        .as_mut()
-                        .and_then(|m| m.tracking.as_mut())
-                        .filter(|tr| tr.id == job.tracking);
-                    if let Some(tr) = same {
+                    if let Some(tr) = tracking_with(&mut self.doc, job.tracking) {
                         tr.stopped = Some(Arc::new(*tracker));
                     }
                 }
@@ -619,14 +607,7 @@ impl TopoApp {
             corrected: tr.map_or(Vec::new(), |t| t.corrected.iter().copied().collect()),
         };
         let json = s.to_json(path).map_err(super::AppError::Movie)?;
-        let inputs: Vec<_> = m
-            .movie
-            .files()
-            .into_iter()
-            .map(|p| (p, "movie frame"))
-            .collect();
-        crate::io::OutputFiles::prepare_for(&inputs, &[path])?.commit(vec![json.into_bytes()])?;
-        Ok(())
+        write_beside(&m.movie, path, json.into_bytes())
     }
 
     /// Opens a movie's session: the movie, its frame-0 shapes and settings, and its
@@ -710,4 +691,27 @@ fn track_labels(
         .collect();
     ctc::label_image(&label_raster(&rings, w, h), w, h, tiff)
         .ok_or_else(|| super::AppError::Movie("more than 65,535 tracks".into()))
+}
+
+/// The tracking result `id` of `doc`, if it is still the one on screen.
+fn tracking_with(doc: &mut Document, id: u64) -> Option<&mut Tracking> {
+    doc.movie
+        .as_mut()
+        .and_then(|m| m.tracking.as_mut())
+        .filter(|tr| tr.id == id)
+}
+
+/// Writes `bytes` to `path` atomically, never over one of `movie`'s files.
+pub(super) fn write_beside(
+    movie: &Movie,
+    path: &Path,
+    bytes: Vec<u8>,
+) -> Result<(), super::AppError> {
+    let inputs: Vec<_> = movie
+        .files()
+        .into_iter()
+        .map(|p| (p, "movie frame"))
+        .collect();
+    crate::io::OutputFiles::prepare_for(&inputs, &[path])?.commit(vec![bytes])?;
+    Ok(())
 }
