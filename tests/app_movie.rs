@@ -271,6 +271,14 @@ fn keys_and_play_move_through_a_tracked_movie_not_the_evolution() {
     h.step();
     click_label(&mut h, "Pause movie");
     assert!(!h.state().view.movie_playing);
+    // Playing stops when another image opens.
+    h.step();
+    click_label(&mut h, "Play movie");
+    assert!(h.state().view.movie_playing);
+    h.state_mut()
+        .send(Command::OpenImage(case_image("bridge_merge")));
+    h.step();
+    assert!(!h.state().view.movie_playing);
 }
 
 #[test]
@@ -525,7 +533,7 @@ fn a_tracked_and_corrected_movie_saved_as_a_session_reopens_as_it_was() {
     let path = save_session(&mut h, "movie.session.json");
     assert!(close_window(&mut h), "saved");
     let text = std::fs::read_to_string(&path).unwrap();
-    assert!(text.contains("\"format\": \"topocontour-tracking\""));
+    assert!(text.contains("\"format\":\"topocontour-tracking\""));
     let mut again = harness(TopoApp::default());
     again.state_mut().send(Command::OpenSession(path.clone()));
     again.step();
@@ -537,6 +545,13 @@ fn a_tracked_and_corrected_movie_saved_as_a_session_reopens_as_it_was() {
     assert_eq!(opened.corrected, saved.corrected);
     assert!(opened.complete);
     assert_eq!(movie_frame(&again), 6, "the frame that was on screen");
+    let p = again.state().doc.params();
+    assert_eq!(
+        p.polarity,
+        Polarity::Bright,
+        "the document's own parameters"
+    );
+    assert_ne!(p.mode, topocontour::evolution::Mode::Track);
     again.get_by_label_contains("corrected: 4");
     assert!(
         close_window(&mut again),
@@ -545,10 +560,7 @@ fn a_tracked_and_corrected_movie_saved_as_a_session_reopens_as_it_was() {
     // A damaged session is one error, nothing opened.
     std::fs::write(
         &path,
-        text.replace(
-            "\"corrected\": [\n    4\n  ]",
-            "\"corrected\": [\n    40\n  ]",
-        ),
+        text.replace("\"corrected\":[4]", "\"corrected\":[40]"),
     )
     .unwrap();
     let mut bad = harness(TopoApp::default());

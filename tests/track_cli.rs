@@ -134,6 +134,17 @@ fn imagej_movie(path: &Path, description: &str) {
 }
 
 #[test]
+fn levels_beyond_the_pyramid_are_refused() {
+    let (m, out) = (tmp("levels.tif"), tmp("levels-res"));
+    movie(&m, &[(80, 64); 3]);
+    let run = track_with(&m, &out, &[Path::new("--levels"), Path::new("99")]);
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{err}");
+    assert!(err.contains("--levels 99: give 1 to 4"), "{err}");
+    assert!(!out.exists());
+}
+
+#[test]
 fn hyperstacks_and_folders_of_stacks_are_refused_a_plain_imagej_stack_tracks() {
     let (m, out) = (tmp("hyper.tif"), tmp("hyper-res"));
     imagej_movie(

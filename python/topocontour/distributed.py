@@ -268,14 +268,18 @@ def map_images(paths, out_dir, *, client, formats=("json",), per_task=None, prog
         from dask.distributed import progress as show
 
         show(futures)
-    for b, fut in zip(batches, futures):
-        for (p, s), (status, value) in zip(b, fut.result()):
-            if status == "ok":
-                rows[s], report.done = value, report.done + 1
-            else:
-                report.failed[p] = value
-    _sweep_temporaries([out_dir / FORMATS[f].format(s) for s in stems for f in formats]
-                       + [_record(out_dir, s) for s in stems])
+    try:
+        for b, fut in zip(batches, futures):
+            for (p, s), (status, value) in zip(b, fut.result()):
+                if status == "ok":
+                    rows[s], report.done = value, report.done + 1
+                else:
+                    report.failed[p] = value
+    finally:
+        # Also when a task failed for good (a worker killed past its retries).
+        if all(f.done() for f in futures):
+            _sweep_temporaries([out_dir / FORMATS[f].format(s) for s in stems for f in formats]
+                               + [_record(out_dir, s) for s in stems])
     text = SUMMARY_HEADER + "".join(rows.get(s, "") for s in stems)
     report.objects = sum(rows[s].count("\n") for s in rows)
     _write_all({report.summary: text.encode()})

@@ -63,6 +63,7 @@ impl TopoApp {
     fn open_image(&mut self, p: PathBuf) {
         match crate::io::load_image_page(&p, 0) {
             Ok((f, info)) => {
+                self.view.movie_playing = false;
                 self.view.prefs.last_dir = p.parent().map(Path::to_path_buf);
                 self.reset_run();
                 let mut doc = Document::of_image(f, crate::io::folder::file_name(&p));
@@ -139,8 +140,9 @@ impl TopoApp {
             }
             Command::SaveSession(p) => match self.save_session(&p) {
                 Ok(()) => {
-                    // Saved, unless tracking still adds frames after it.
-                    self.unsaved &= self.jobs.track.is_some();
+                    // Saved, unless tracking still adds frames after it or a movie's
+                    // session leaves something out.
+                    self.unsaved &= self.jobs.track.is_some() || self.movie_session_leaves_out();
                     self.status
                         .notify(format!("session saved to {}", p.display()))
                 }

@@ -213,6 +213,7 @@ impl TopoApp {
 
     /// `movie`, opened, as a new document on its first frame.
     pub(super) fn show_movie(&mut self, movie: Movie) {
+        self.view.movie_playing = false;
         let path = movie.path().to_path_buf();
         let path = path.as_path();
         let first = match self.view.frames.get(&movie, 0) {
@@ -247,7 +248,11 @@ impl TopoApp {
     /// Advances the playing movie a frame every [`MOVIE_FRAME_S`] seconds; stops at its
     /// last frame.
     pub(super) fn tick_movie(&mut self, dt: f64) {
-        let Some(m) = self.doc.movie.as_ref().filter(|_| self.view.movie_playing) else {
+        if !self.view.movie_playing {
+            return;
+        }
+        let Some(m) = self.doc.movie.as_ref() else {
+            self.view.movie_playing = false;
             return;
         };
         let (t, last) = (m.frame, m.movie.len() - 1);
@@ -257,7 +262,9 @@ impl TopoApp {
         }
         self.view.movie_clock = 0.0;
         self.show_movie_frame((t + 1).min(last));
-        self.view.movie_playing = t + 1 < last && self.status.error.is_none();
+        // It stops at the end, and where the frame could not be shown.
+        let now = self.doc.movie.as_ref().map_or(t, |m| m.frame);
+        self.view.movie_playing = now == t + 1 && now < last;
     }
 
     /// Shows frame `t` of the movie: its image (the shapes stay, the run starts again).
@@ -370,12 +377,13 @@ impl TopoApp {
         tr.running = true;
         let (id, from) = (tr.id, last.frame + 1);
         // The stopped tracker goes on as if never stopped; without one (Undo back to a
-        // result still being tracked) it resumes from the last frame's contours.
+        // result still being tracked, a partial tracking reopened from its session) it
+        // resumes from the last frame's contours.
         let tracker = match tr.stopped.take().filter(|t| t.next_frame() == from) {
             Some(t) => Arc::unwrap_or_clone(t),
             None => Tracker::resume(settings.clone(), tr.lineage.clone(), &last, w, h),
         };
-        let changed = self.doc.params() != &settings.params;
+        let changed = TrackSettings::new(self.doc.params().clone()).params != settings.params;
         self.spawn_tracking(tracker, from, id);
         self.status.notify(if changed {
             format!("tracking on from frame {from} with the settings it started with (Track again uses the new ones)…")
@@ -599,6 +607,7 @@ impl TopoApp {
             },
             shown: m.frame,
             shapes: self.doc.shapes.clone(),
+            params: self.doc.params().clone(),
             settings: tr.and_then(|t| t.settings.clone()),
             frames: tr.map_or(Vec::new(), |t| {
                 t.frames.iter().map(|f| (**f).clone()).collect()
@@ -610,6 +619,20 @@ impl TopoApp {
         write_beside(&m.movie, path, json.into_bytes())
     }
 
+    /// Whether a movie's session leaves out work on screen: a frame's own run edited by
+    /// hand (not a tracked frame's correction, which is in the tracking), or strokes.
+    pub(super) fn movie_session_leaves_out(&self) -> bool {
+        let Some(m) = &self.doc.movie else {
+            return false;
+        };
+        let edited = self
+            .doc
+            .run
+            .as_ref()
+            .is_some_and(|r| !r.edits().is_empty() && m.correcting.is_none());
+        edited || self.doc.train.painted()
+    }
+
     /// Opens a movie's session: the movie, its frame-0 shapes and settings, and its
     /// tracking as it was saved (Continue tracking goes on from a partial one).
     pub(super) fn open_tracking_session(&mut self, t: crate::io::tracking_session::OpenedTracking) {
@@ -619,10 +642,8 @@ impl TopoApp {
             return;
         }
         self.doc.shapes = s.shapes;
-        if let Some(st) = &s.settings {
-            self.doc.settings.params = st.params.clone();
-            self.doc.settings.mode_chosen = true;
-        }
+        self.doc.settings.params = s.params;
+        self.doc.settings.mode_chosen = true;
         let Some(m) = self.doc.movie.as_mut() else {
             return;
         };

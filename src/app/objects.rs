@@ -125,9 +125,10 @@ fn tracked_ui(cx: &mut Ctx, ui: &mut egui::Ui) -> bool {
         .map(|(k, o)| (k as u32, false, o.ring.as_slice()))
         .collect();
     let rows = regions_of_rings(&rings);
+    let cells: std::collections::BTreeSet<u32> = f.objects.iter().map(|o| o.track).collect();
     ui.label(format!(
         "{} in movie frame {}",
-        crate::cli::counted(rows.len(), "cell"),
+        crate::cli::counted(cells.len(), "cell"),
         f.frame
     ))
     .on_hover_text("the tracked cells of the frame on screen: area and perimeter in pixels, circularity 4πA/P² (1 for a disk)");

@@ -136,8 +136,12 @@ pub fn tracker_for(a: &TrackArgs, w: usize, h: usize) -> Result<Tracker, Failure
     settings.shrink = a.shrink;
     settings.auto_seeds = a.auto_seeds || init.is_empty();
     settings.new_cells = !a.no_new_cells;
-    if a.levels == 0 {
-        return Err(bad("--levels must be at least 1"));
+    if !(1..=crate::image::model::PYRAMID_LEVELS).contains(&a.levels) {
+        return Err(bad(format!(
+            "--levels {}: give 1 to {} (the pyramid's levels)",
+            a.levels,
+            crate::image::model::PYRAMID_LEVELS
+        )));
     }
     if w.min(h) < 8 {
         return Err(bad(format!(
@@ -202,6 +206,13 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
             image,
         });
     }
+    if tracked == 0 {
+        // Stopped before frame 0: an earlier result in the folders stays as it was.
+        return Err(Failure {
+            code: 130,
+            message: "interrupted before the first frame: nothing tracked or written".into(),
+        });
+    }
     if let Some(last) = held {
         out.write(&last, tracker.lineage())?;
     }
@@ -232,16 +243,13 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
     if tracked < movie.len() {
         return Err(Failure {
             code: 130,
-            message: match tracked {
-                0 => "interrupted before the first frame: nothing tracked".into(),
-                t => format!(
-                    "interrupted: frames 0 to {} of {} tracked and written ({} tracks, {} divisions)",
-                    t - 1,
-                    movie.len(),
-                    lineage.tracks().len(),
-                    divisions
-                ),
-            },
+            message: format!(
+                "interrupted: frames 0 to {} of {} tracked and written ({} tracks, {} divisions)",
+                tracked - 1,
+                movie.len(),
+                lineage.tracks().len(),
+                divisions
+            ),
         });
     }
     note(&format!(

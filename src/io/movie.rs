@@ -47,7 +47,7 @@ pub enum MovieError {
     },
     /// An ImageJ hyperstack with channels, or slices and frames: its pages are not one
     /// plane per time point.
-    #[error("{path} is an ImageJ hyperstack of {channels} channel(s) × {slices} slice(s) × {frames} frame(s): a movie to track is one grey plane per frame (in Fiji, Image ▸ Color ▸ Split Channels and Image ▸ Stacks ▸ Z Project first)")]
+    #[error("{path} is an ImageJ hyperstack of {channels} channel(s) × {slices} slice(s) × {frames} frame(s): a movie to track is one grey plane per frame (in Fiji, Image > Color > Split Channels and Image > Stacks > Z Project first)")]
     Hyperstack {
         /// The movie.
         path: String,

@@ -45,7 +45,7 @@ pub fn tiff_info(bytes: &[u8]) -> Option<(usize, Option<PixelSize>)> {
 /// Directories in the chain from the first, read without their images' strip tables;
 /// the walk stops at a directory seen before (a cycle), an unreadable one or
 /// [`MAX_PAGES`].
-fn count_pages(dec: &mut Decoder<Cursor<&[u8]>>) -> usize {
+fn count_pages<R: std::io::Read + std::io::Seek>(dec: &mut Decoder<R>) -> usize {
     let mut seen = std::collections::HashSet::new();
     let mut at: Option<IfdPointer> = dec.ifd_pointer();
     while let Some(ptr) = at {
@@ -138,17 +138,13 @@ pub fn imagej_dimensions(path: &std::path::Path) -> Option<(usize, usize, usize)
 
 /// Pages of the TIFF at `path` (1 for any other image).
 pub fn pages_of(path: &std::path::Path) -> usize {
-    let tiff = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("tif") || e.eq_ignore_ascii_case("tiff"));
-    if !tiff {
+    if !crate::io::export::is_tiff(path) {
         return 1;
     }
-    std::fs::read(path)
-        .ok()
-        .and_then(|b| tiff_info(&b))
-        .map_or(1, |(pages, _)| pages)
+    let Ok(file) = std::fs::File::open(path) else {
+        return 1;
+    };
+    Decoder::new(std::io::BufReader::new(file)).map_or(1, |mut dec| count_pages(&mut dec))
 }
 
 /// Samples per pixel of the first page of the TIFF at `path` (3 for RGB), if it reads.

@@ -52,6 +52,8 @@ pub struct TrackingSession {
     pub shown: usize,
     /// The shapes drawn on frame 0 (none: automatic seeds).
     pub shapes: Vec<Shape>,
+    /// The document's parameters (its engine, kind of image, forces).
+    pub params: crate::evolution::Params,
     /// How it was tracked (none: not tracked yet).
     pub settings: Option<TrackSettings>,
     /// The frames tracked, from frame 0 on.
@@ -84,7 +86,7 @@ pub fn is_tracking_session(bytes: &[u8]) -> bool {
 }
 
 impl TrackingSession {
-    /// The session as pretty JSON written to `session_path` (the movie's path relative to
+    /// The session as JSON written to `session_path` (the movie's path relative to
     /// it); refused when the movie path is not UTF-8.
     pub fn to_json(mut self, session_path: &Path) -> Result<String, String> {
         self.movie.path = super::session::stored_path(session_path, &self.movie.path);
@@ -94,21 +96,25 @@ impl TrackingSession {
                 self.movie.path.display()
             ));
         }
-        Ok(serde_json::to_string_pretty(&self).expect("JSON of plain data with UTF-8 paths"))
+        // Compact: a long movie's outlines are many points.
+        let json = serde_json::to_string(&self).expect("JSON of plain data with UTF-8 paths");
+        if json.len() as u64 > MAX_TRACKING_BYTES {
+            return Err(format!(
+                "the tracking is {} bytes as a session, more than one can be read back ({MAX_TRACKING_BYTES}): export it (Export CTC…) instead",
+                json.len()
+            ));
+        }
+        Ok(json)
     }
 
     /// Reads the session at `path` and opens its movie, every field checked; None when
     /// the file is no tracking session (a still's, say).
     pub fn open(path: &Path) -> Result<Option<OpenedTracking>, String> {
-        use crate::io::load::{read_regular, Unread};
         let refused = |why: String| format!("{} is not a tracking session: {why}", path.display());
-        let bytes = read_regular(path, MAX_TRACKING_BYTES).map_err(|e| match e {
-            Unread::Io(e) => refused(e.to_string()),
-            Unread::NotAFile => refused("not a regular file".into()),
-            Unread::TooLarge(n) => {
-                refused(format!("{n} bytes, more than any ({MAX_TRACKING_BYTES})"))
-            }
-        })?;
+        // A file that cannot be read is left to the still session's reader to report.
+        let Ok(bytes) = crate::io::load::read_regular(path, MAX_TRACKING_BYTES) else {
+            return Ok(None);
+        };
         if !is_tracking_session(&bytes) {
             return Ok(None);
         }
@@ -151,9 +157,13 @@ impl TrackingSession {
             return Err(format!("frame {} shown of {n}", self.shown));
         }
         check_shapes(&self.shapes, w, h).map_err(|e| e.to_string())?;
+        check_params(&self.params).map_err(|e| e.to_string())?;
         if let Some(st) = &self.settings {
             check_params(&st.params).map_err(|e| e.to_string())?;
-            if st.levels == 0 || st.seed_every == 0 || !(st.shrink.is_finite() && st.shrink >= 0.0)
+            let levels = 1..=crate::image::model::PYRAMID_LEVELS;
+            if !levels.contains(&st.levels)
+                || st.seed_every == 0
+                || !(st.shrink.is_finite() && st.shrink >= 0.0)
             {
                 return Err("its tracking settings are out of range".into());
             }

@@ -52,11 +52,6 @@ pub enum ExportError {
     },
 }
 
-/// Extensions of image formats: a raster output named so must be written so.
-const IMAGE_EXTENSIONS: [&str; 9] = [
-    "png", "tif", "tiff", "jpg", "jpeg", "bmp", "gif", "webp", "j2k",
-];
-
 /// Whether `path` ends in .tif or .tiff (a mask or label image is then TIFF, else PNG).
 pub fn is_tiff(path: &Path) -> bool {
     extension(path).is_some_and(|e| e == "tif" || e == "tiff")
@@ -129,7 +124,9 @@ impl Format {
             _ => return Ok(()),
         };
         match extension(path) {
-            Some(ext) if IMAGE_EXTENSIONS.contains(&ext.as_str()) && !ok.contains(&&*ext) => {
+            Some(ext)
+                if image::ImageFormat::from_extension(&ext).is_some() && !ok.contains(&&*ext) =>
+            {
                 Err(ExportError::Extension {
                     format,
                     allowed,
@@ -188,6 +185,10 @@ mod tests {
         );
         assert!(name(Format::Mask, "a.jpeg").is_err());
         assert!(name(Format::Overlay, "a.tif").is_err());
+        assert!(
+            name(Format::Mask, "a.pgm").is_err(),
+            "any image format the name says"
+        );
         for ok in ["a.png", "a.TIFF", "a", "a.mask", "a.out"] {
             assert!(name(Format::Mask, ok).is_ok(), "{ok}");
         }
