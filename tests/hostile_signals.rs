@@ -197,6 +197,41 @@ fn a_track_asked_to_stop_writes_the_frames_it_tracked_as_a_whole_result() {
     assert_eq!(last, masks - 1, "{res}");
 }
 
+/// A run over an earlier result removes its res_track.txt before the first new mask and
+/// writes its own last: killed between, the folder holds no res_track.txt describing
+/// other masks than its own.
+#[test]
+fn a_killed_track_leaves_no_res_track_of_an_earlier_run() {
+    let d = common::workdir("signals", "track-again");
+    let movie = d.join("movie");
+    std::fs::create_dir(&movie).unwrap();
+    for t in 0..200 {
+        let x = 40.0 + (t % 40) as f64;
+        disks_png(
+            &movie.join(format!("f{t:03}.png")),
+            200,
+            120,
+            &[(x, 60.0, 14.0)],
+        );
+    }
+    let out = d.join("res");
+    let track = || {
+        let mut c = bin();
+        c.args(["track", s(&movie), "--object", "dark", "--ctc", s(&out)]);
+        c
+    };
+    run_ok(&mut track());
+    assert!(out.join("res_track.txt").is_file());
+    let mut child = track().stderr(Stdio::null()).spawn().unwrap();
+    wait_for(&d, |_| !out.join("res_track.txt").exists());
+    signal(&child, libc::SIGKILL);
+    child.wait().unwrap();
+    assert!(
+        !out.join("res_track.txt").exists(),
+        "no res_track.txt of the run before"
+    );
+}
+
 #[test]
 fn a_killed_batch_leaves_no_summary_of_an_earlier_run() {
     let d = common::workdir("signals", "stale");

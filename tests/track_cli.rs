@@ -134,6 +134,33 @@ fn imagej_movie(path: &Path, description: &str) {
 }
 
 #[test]
+fn an_overlay_named_in_another_format_or_a_device_is_refused() {
+    let (m, out) = (tmp("ovl.tif"), tmp("ovl-res"));
+    movie(&m, &[(80, 64); 3]);
+    for (name, says) in [
+        ("o.jpg", "an overlay is written as PNG, not .jpg"),
+        ("/dev/null", "not a file name"),
+    ] {
+        let run = Command::new(env!("CARGO_BIN_EXE_topocontour"))
+            .args([
+                "track",
+                m.to_str().unwrap(),
+                "--object",
+                "bright",
+                "--overlay",
+                name,
+            ])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{name}: {err}");
+        assert!(err.contains(says), "{err}");
+    }
+    assert!(!Path::new("/dev/null.000.png").exists());
+    assert!(!out.exists());
+}
+
+#[test]
 fn levels_beyond_the_pyramid_are_refused() {
     let (m, out) = (tmp("levels.tif"), tmp("levels-res"));
     movie(&m, &[(80, 64); 3]);

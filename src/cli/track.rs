@@ -218,7 +218,6 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
     }
     let lineage = tracker.lineage();
     if let Some(dir) = &plan.ctc {
-        write(&dir.join("res_track.txt"), lineage.ctc_text().as_bytes())?;
         let written: Vec<String> = (0..tracked)
             .map(|t| ctc::mask_name(t, movie.len()))
             .collect();
@@ -228,6 +227,7 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
                 dir.display()
             ))
         })?;
+        write(&dir.join("res_track.txt"), lineage.ctc_text().as_bytes())?;
     }
     let mut contents = Vec::new();
     if a.json.is_some() {
@@ -285,6 +285,14 @@ impl Out<'_> {
         if let Some(dir) = &self.plan.ctc {
             let bytes = ctc::label_image(&held.labels, w, h, true)
                 .ok_or_else(|| bad("more than 65,535 tracks for 16-bit label images"))?;
+            // An earlier result's res_track.txt would describe masks this run replaces
+            // one by one (and, killed, leaves mixed): it goes before the first mask and
+            // comes back at the end, once the masks are this run's alone.
+            let res = dir.join("res_track.txt");
+            if t == 0 && res.is_file() {
+                std::fs::remove_file(&res)
+                    .map_err(|e| bad(format!("cannot replace {}: {e}", res.display())))?;
+            }
             write(&dir.join(ctc::mask_name(t, self.frames)), &bytes)?;
         }
         if let Some(out) = &self.plan.overlay {
@@ -323,6 +331,16 @@ fn prepare(a: &TrackArgs) -> Result<Plan, Failure> {
     let files = OutputFiles::prepare_for(&inputs, &files).map_err(|e| bad(e.to_string()))?;
     apart_from_movie(a)?;
     if let Some(out) = &a.overlay {
+        crate::io::Format::Overlay
+            .check_name(out)
+            .map_err(|e| bad(format!("--overlay {}: {e}", out.display())))?;
+        // A sequence's files are named after it: a special file (/dev/null) names none.
+        if a.overlay_frame.is_none() && out.exists() && !out.is_file() {
+            return Err(bad(format!(
+                "--overlay {}: not a file name (one PNG per frame is named after it)",
+                out.display()
+            )));
+        }
         // Its folder, name and kind checked now, not after the frames before it are
         // tracked (a sequence by its first file; its temporaries go with the check).
         let first = match a.overlay_frame {

@@ -12,12 +12,15 @@ use std::path::{Path, PathBuf};
 pub const SUMMARY_HEADER: &str =
     "image,id,area,perimeter,circularity,centroid_x,centroid_y,holes,mean_intensity,contour\n";
 
-/// The images of `dir` (regular files ending in .png, .jpg, .jpeg, .tif or .tiff; not
-/// its subfolders), in natural name order (`frame_2` before `frame_10`).
+/// The images of `dir` (regular files ending in .png, .jpg, .jpeg, .tif or .tiff, not
+/// hidden; not its subfolders), in natural name order (`frame_2` before `frame_10`).
 pub fn list_images(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     let mut images: Vec<PathBuf> = std::fs::read_dir(dir)?
         .flatten()
         .map(|e| e.path())
+        // Hidden files are no frames: macOS leaves `._name.tif` beside each file it
+        // copies (its resource fork), which no image reader opens.
+        .filter(|p| !file_name(p).starts_with('.'))
         .filter(|p| p.is_file())
         .filter(|p| {
             p.extension().and_then(|e| e.to_str()).is_some_and(|e| {
@@ -158,6 +161,7 @@ mod tests {
             "frame_2.png",
             "frame_1.png",
             "notes.txt",
+            "._frame_1.png",
             "frame_0.png",
         ] {
             std::fs::write(dir.path().join(n), b"").unwrap();
