@@ -186,6 +186,34 @@ fn hyperstacks_and_folders_of_stacks_are_refused_a_plain_imagej_stack_tracks() {
         "{err}"
     );
     assert!(!out.exists());
+    // tifffile's and OME's descriptions say the same.
+    for (name, description, says) in [
+        (
+            "shaped.tif",
+            r#"{"shape": [3, 2, 64, 80]}"#,
+            "2 channel(s) × 1 slice(s) × 3 frame(s)",
+        ),
+        (
+            "axes.tif",
+            r#"{"shape": [3, 2, 64, 80], "axes": "TZYX"}"#,
+            "1 channel(s) × 2 slice(s) × 3 frame(s)",
+        ),
+        (
+            "ome.tif",
+            r#"<?xml version="1.0"?><OME><Image><Pixels SizeC="2" SizeT="3" SizeZ="1"/></Image></OME>"#,
+            "2 channel(s) × 1 slice(s) × 3 frame(s)",
+        ),
+    ] {
+        let (m, out) = (tmp(name), tmp(&format!("{name}-res")));
+        imagej_movie(&m, description);
+        let run = track(&m, &out);
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{name}: {err}");
+        assert!(err.contains(says), "{name}: {err}");
+    }
+    let (m, out) = (tmp("shaped-t.tif"), tmp("shaped-t-res"));
+    imagej_movie(&m, r#"{"shape": [6, 64, 80]}"#);
+    tracked(&track(&m, &out), &out, "1 0 5 0\n");
     // ImageJ states a plain stack's pages as slices: that is a movie.
     let (m, out) = (tmp("plain.tif"), tmp("plain-res"));
     imagej_movie(&m, "ImageJ=1.54f\nimages=6\nslices=6\n");

@@ -45,9 +45,9 @@ pub enum MovieError {
         /// Samples per pixel of its page.
         samples: usize,
     },
-    /// An ImageJ hyperstack with channels, or slices and frames: its pages are not one
-    /// plane per time point.
-    #[error("{path} is an ImageJ hyperstack of {channels} channel(s) × {slices} slice(s) × {frames} frame(s): a movie to track is one grey plane per frame (in Fiji, Image > Color > Split Channels and Image > Stacks > Z Project first)")]
+    /// A hyperstack with channels, or slices and frames: its pages are not one plane per
+    /// time point.
+    #[error("{path} is a hyperstack of {channels} channel(s) × {slices} slice(s) × {frames} frame(s): a movie to track is one grey plane per frame (in Fiji, Image > Color > Split Channels and Image > Stacks > Z Project first)")]
     Hyperstack {
         /// The movie.
         path: String,
@@ -124,7 +124,7 @@ impl Movie {
         };
         match &movie.source {
             Source::Stack(p) => {
-                if let Some((channels, slices, frames)) = super::tiff_info::imagej_dimensions(p) {
+                if let Some((channels, slices, frames)) = super::tiff_info::stack_dimensions(p) {
                     // A plain ImageJ stack states its pages as slices: only two axes
                     // at once are refused.
                     if channels > 1 || (slices > 1 && frames > 1) {

@@ -119,21 +119,65 @@ fn pixel_size(dec: &mut Decoder<Cursor<&[u8]>>) -> Option<PixelSize> {
     })
 }
 
-/// The (channels, slices, frames) an ImageJ TIFF's description states (1 for each one
-/// not stated); None for a TIFF ImageJ did not write, or no TIFF.
-pub fn imagej_dimensions(path: &std::path::Path) -> Option<(usize, usize, usize)> {
+/// The (channels, slices, frames) a TIFF's first description states, 1 for each one not
+/// stated: ImageJ's (`channels=`, `slices=`, `frames=`), OME-XML's (`SizeC`, `SizeZ`,
+/// `SizeT`) or tifffile's (`{"shape": [...], "axes": "TCYX"}`; without axes, the
+/// dimensions before the plane's, as frames and channels). None for a TIFF whose
+/// description states none, or no TIFF.
+pub fn stack_dimensions(path: &std::path::Path) -> Option<(usize, usize, usize)> {
     let file = std::fs::File::open(path).ok()?;
     let mut dec = Decoder::new(std::io::BufReader::new(file)).ok()?;
     let d = dec.get_tag_ascii_string(Tag::ImageDescription).ok()?;
-    if !d.starts_with("ImageJ=") {
-        return None;
+    if d.starts_with("ImageJ=") {
+        let get = |key: &str| {
+            d.lines()
+                .find_map(|l| l.strip_prefix(key)?.trim().parse().ok())
+                .unwrap_or(1)
+        };
+        return Some((get("channels="), get("slices="), get("frames=")));
     }
-    let get = |key: &str| {
-        d.lines()
-            .find_map(|l| l.strip_prefix(key)?.trim().parse().ok())
-            .unwrap_or(1)
-    };
-    Some((get("channels="), get("slices="), get("frames=")))
+    if d.contains("<OME") {
+        let get = |key: &str| {
+            let at = d.find(&format!("{key}=\""))? + key.len() + 2;
+            d[at..].split('"').next()?.parse().ok()
+        };
+        let size = |key| get(key).unwrap_or(1);
+        return Some((size("SizeC"), size("SizeZ"), size("SizeT")));
+    }
+    let shaped: serde_json::Value = serde_json::from_str(&d).ok()?;
+    let shape: Vec<usize> = shaped
+        .get("shape")?
+        .as_array()?
+        .iter()
+        .map(|v| v.as_u64().map(|n| n as usize))
+        .collect::<Option<_>>()?;
+    match shaped.get("axes").and_then(|a| a.as_str()) {
+        Some(axes) if axes.len() == shape.len() => {
+            let size = |c: char| {
+                axes.chars()
+                    .zip(&shape)
+                    .filter(|(a, _)| *a == c)
+                    .map(|(_, &n)| n)
+                    .product()
+            };
+            Some((size('C'), size('Z'), size('T')))
+        }
+        // Without axes: planes are the last two (three for colour samples) dimensions.
+        _ => {
+            let planes = if shape.last().is_some_and(|&n| n == 3 || n == 4) {
+                3
+            } else {
+                2
+            };
+            let lead: Vec<usize> = shape.iter().rev().skip(planes).rev().copied().collect();
+            let (t, c) = match lead.as_slice() {
+                [] => (1, 1),
+                [t] => (*t, 1),
+                [t, rest @ ..] => (*t, rest.iter().product()),
+            };
+            Some((c, 1, t))
+        }
+    }
 }
 
 /// Pages of the TIFF at `path` (1 for any other image).
