@@ -17,7 +17,8 @@ pub use bench::{bench, BenchArgs};
 pub use run::{
     classifier_for, init_shapes, job_for, mode_of, params_for, run_loaded, teach_for, RunSettings,
 };
-pub(crate) use segment::counted;
+#[cfg(feature = "gui")]
+pub(crate) use segment::counted; // the app words its counts alike
 pub use segment::{replay, segment, OutputArgs, ReplayArgs, SegmentArgs};
 pub use track::{track, tracker_for, TrackArgs};
 pub use train::{classifier_of, train, TrainArgs};
