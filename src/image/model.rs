@@ -23,7 +23,7 @@ use super::hints::hints;
 use super::intensity::{IntensityModel, Polarity};
 use super::local::{decision_field, Decision, LevelRule};
 use super::modality::{for_modality, Modality};
-use super::scale::{half_width, RADIUS_RANGE};
+use super::scale::{half_width, object_scale};
 use super::stored::Stored;
 use crate::geometry::Point;
 use crate::shape::Shape;
@@ -155,9 +155,7 @@ impl ImageModel {
         pyramid.levels.truncate(resolvable_levels(hw));
         let fine = &pyramid.levels[0].image;
         let (radius, rule, decision) = if params.local {
-            let radius = params
-                .local_radius
-                .unwrap_or_else(|| hw.clamp(RADIUS_RANGE.0, RADIUS_RANGE.1));
+            let radius = params.local_radius.unwrap_or_else(|| object_scale(hw));
             let rule = LevelRule::new(fine, &global, params.modality);
             let cells = pyramid.levels.iter().map(|_| OnceLock::new()).collect();
             (Some(radius), Some(rule), cells)

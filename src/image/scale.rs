@@ -9,14 +9,14 @@ use super::intensity::IntensityModel;
 /// Smallest and largest local radius, full-resolution pixels.
 pub const RADIUS_RANGE: (f64, f64) = (3.0, 24.0);
 
-/// The mean half-width 2A/P of what lies on the object side of the global level (A
-/// counts pixels, P pixel sides between object and background), clamped to
-/// [`RADIUS_RANGE`].
-pub fn object_scale(image: &Field, model: &IntensityModel) -> f64 {
-    half_width(image, model).clamp(RADIUS_RANGE.0, RADIUS_RANGE.1)
+/// The object scale of an image whose [`half_width`] is `hw` (measured once, as the
+/// pyramid's depth reads it too): `hw` clamped to [`RADIUS_RANGE`].
+pub fn object_scale(hw: f64) -> f64 {
+    hw.clamp(RADIUS_RANGE.0, RADIUS_RANGE.1)
 }
 
-/// [`object_scale`] before the clamp (at least one pixel).
+/// The mean half-width 2A/P of what lies on the object side of the global level (A
+/// counts pixels, P pixel sides between object and background), at least one pixel.
 pub fn half_width(image: &Field, model: &IntensityModel) -> f64 {
     let (w, h) = (image.width, image.height);
     let t = model.threshold() as f32;
