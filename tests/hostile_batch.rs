@@ -109,6 +109,19 @@ fn out_that_is_not_a_folder_is_refused_as_such() {
     assert_eq!(std::fs::read(&file).unwrap(), b"keep");
 }
 
+/// `--out` naming a symbolic link to nothing says so (it said "File exists").
+#[test]
+fn out_that_is_a_dangling_link_is_refused_as_such() {
+    let (d, input) = inputs("dangling", &["a.png"]);
+    let link = d.join("link");
+    std::os::unix::fs::symlink(d.join("nowhere"), &link).unwrap();
+    refused(
+        &mut batch(&input, &link, "json"),
+        "a symbolic link to nothing",
+    );
+    assert!(!d.join("nowhere").exists());
+}
+
 /// Issue 24.10: `--jobs 100000` runs at most one thread per core (it used to spawn
 /// threads without end).
 #[test]

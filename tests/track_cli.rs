@@ -160,6 +160,27 @@ fn an_overlay_named_in_another_format_or_a_device_is_refused() {
     assert!(!out.exists());
 }
 
+/// `--ctc` naming a file, or the movie file itself, says what is wrong and leaves it be.
+#[test]
+fn a_ctc_result_that_is_a_file_or_the_movie_is_refused_as_such() {
+    let (m, file) = (tmp("ctcfile.tif"), tmp("ctcfile"));
+    movie(&m, &[(80, 64); 3]);
+    std::fs::write(&file, b"keep").unwrap();
+    let before = std::fs::read(&m).unwrap();
+    for (out, says) in [
+        (&file, "ctcfile: not a folder"),
+        (&m, "ctcfile.tif: that is the movie itself"),
+    ] {
+        let run = track(&m, out);
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{err}");
+        assert!(err.contains(says), "{err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+    }
+    assert_eq!(std::fs::read(&file).unwrap(), b"keep");
+    assert_eq!(std::fs::read(&m).unwrap(), before);
+}
+
 #[test]
 fn levels_beyond_the_pyramid_are_refused() {
     let (m, out) = (tmp("levels.tif"), tmp("levels-res"));

@@ -103,6 +103,12 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
     {
         return Err(bad(format!("--formats names {} twice", f.name())));
     }
+    if a.out.is_symlink() && !a.out.exists() {
+        return Err(bad(format!(
+            "--out {}: a symbolic link to nothing; give a folder",
+            a.out.display()
+        )));
+    }
     if a.out.exists() && !a.out.is_dir() {
         return Err(bad(format!(
             "--out {}: not a folder (batch writes a folder of outputs)",

@@ -419,8 +419,19 @@ fn apart_from_movie(a: &TrackArgs) -> Result<(), Failure> {
         return Ok(());
     };
     if a.movie.canonicalize().ok().as_ref() == Some(&ctc) {
+        let what = if a.movie.is_dir() {
+            "the movie's own folder"
+        } else {
+            "the movie itself"
+        };
         return Err(bad(format!(
-            "--ctc {}: that is the movie's own folder; give another folder for the result",
+            "--ctc {}: that is {what}; give another folder for the result",
+            given.display()
+        )));
+    }
+    if !ctc.is_dir() {
+        return Err(bad(format!(
+            "--ctc {}: not a folder (the result is a folder of masks and res_track.txt)",
             given.display()
         )));
     }

@@ -3,7 +3,7 @@
 //! (Douglas–Peucker).
 
 use crate::geometry::Point;
-use std::collections::HashSet;
+use rustc_hash::FxHashSet;
 
 /// The outline (pixel corners, region on one side) of the 4-connected part of basin `l`
 /// that holds pixel `at`, after removing its pixels that touch another basin, so
@@ -44,11 +44,11 @@ pub fn basin_outline(labels: &[u32], l: u32, at: usize, w: usize, h: usize) -> O
 }
 
 /// Pixels as (x, y).
-type Pixels = HashSet<(isize, isize)>;
+type Pixels = FxHashSet<(isize, isize)>;
 
 /// The 4-connected part of the pixels `kept` holding pixel `at`.
 fn part_of(at: (isize, isize), kept: &dyn Fn(isize, isize) -> bool) -> Pixels {
-    let mut inside = HashSet::new();
+    let mut inside = Pixels::default();
     let mut stack = vec![at];
     inside.insert(at);
     while let Some((x, y)) = stack.pop() {

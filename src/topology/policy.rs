@@ -9,11 +9,15 @@
 //!
 //! How a move is held: the motion region, crossings and Directive 2 rings are planned as
 //! for any move (nothing changes yet). A move that crosses no ring and deletes none is
-//! carried out at once (it cannot change topology). Any other move is carried out on the
+//! carried out at once (it cannot change topology). Where merges are held, a move whose
+//! new edges cross another object's outline is refused at once: it would join the two,
+//! or (the property test found one) cut through the other so that only a split is
+//! reported — the other cell torn by its neighbour, not dividing. Two touching cells
+//! press on each other in most tracked frames, thousands of such moves a frame; carried
+//! out and put back, they made a 512² frame of a 60-cell colony 1.5–3 times slower
+//! (docs/decisions.md, 2026-12-06). Any other move is carried out on the
 //! set, and if one of its events is one the policy holds back, the set is put back as it
-//! was and the move is refused with [`MoveError::Held`]. Guessing the events from the
-//! crossings alone is not safe: the property test found a move that crosses another
-//! object where the region grows and yet reports only a split. Putting back is local
+//! was and the move is refused with [`MoveError::Held`]. Putting back is local
 //! (`Undo`): a move changes only the rings it crosses, its own and those inside its
 //! motion region, so only those are recorded before it (vertex ids, links, positions,
 //! ring entries) with the free list, and restored after; a copy of the whole set cost
@@ -102,6 +106,9 @@ impl ContourSet {
         policy: TopologyPolicy,
     ) -> Result<Vec<TopologyEvent>, MoveError> {
         let mut plan = self.plan_move(v, to)?;
+        if !policy.merge && self.crosses_another_object(&plan) {
+            return Err(MoveError::Held("merge"));
+        }
         let quiet =
             plan.crossings.is_empty() && plan.inside.is_empty() && plan.moving_inside.is_none();
         if quiet {
@@ -117,6 +124,22 @@ impl ContourSet {
             return Err(MoveError::Held(kind));
         }
         Ok(events)
+    }
+
+    /// Whether a planned move's new edges cross the outline of another object: an outer
+    /// ring other than the moving one, itself outer. Such a move joins the two regions
+    /// (a merge), or cuts through the other object; neither is one object dividing.
+    fn crosses_another_object(&self, plan: &MovePlan) -> bool {
+        let outer = |l: u32| {
+            let r = self.ring(l);
+            self.loop_is_outer(r.anchor, r.area2)
+        };
+        !plan.crossings.is_empty()
+            && plan.crossings.iter().any(|c| {
+                let l = self.label[c.edge as usize];
+                l != plan.label && outer(l)
+            })
+            && outer(plan.label)
     }
 }
 

@@ -22,7 +22,7 @@ use crate::image::field::{neighbours4, Field};
 use crate::image::outline::basin_outline;
 use crate::image::ImageModel;
 use crate::track::{carry::labels_of, object, TrackedObject};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// A marker is the part of a cell at least this share of its deepest inside distance.
 pub const CORE: f32 = 0.5;
@@ -71,7 +71,7 @@ struct Cells {
     /// Inside distance of each pixel of a cell: to the nearest pixel of another.
     dist: Field,
     /// Per label of the group: the deepest inside distance and its pixel.
-    deepest: HashMap<u32, (f32, usize)>,
+    deepest: FxHashMap<u32, (f32, usize)>,
     /// The region score, lightly smoothed so noise does not steer the flood.
     score: Field,
 }
@@ -89,7 +89,7 @@ fn groups(frame: &[u32], w: usize, h: usize) -> Vec<(Vec<u32>, [usize; 4])> {
         let (ra, rb) = (find(&mut root, a), find(&mut root, b));
         root[ra.max(rb) as usize] = ra.min(rb);
     }
-    let mut boxes: HashMap<u32, [usize; 4]> = HashMap::new();
+    let mut boxes: FxHashMap<u32, [usize; 4]> = FxHashMap::default();
     for (i, &l) in frame.iter().enumerate() {
         if l != 0 && touching[l as usize] {
             let (x, y) = (i % w, i / w);
@@ -97,7 +97,7 @@ fn groups(frame: &[u32], w: usize, h: usize) -> Vec<(Vec<u32>, [usize; 4])> {
             *b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
         }
     }
-    let mut out: HashMap<u32, (Vec<u32>, [usize; 4])> = HashMap::new();
+    let mut out: FxHashMap<u32, (Vec<u32>, [usize; 4])> = FxHashMap::default();
     for l in 1..=n as u32 {
         let Some(b) = boxes.get(&l) else { continue };
         let r = find(&mut root, l);
@@ -142,7 +142,7 @@ impl Cells {
             .map(|i| labels[i] != 0 && neighbours4(i, w, h).all(|j| labels[j] == labels[i]))
             .collect();
         let dist = distance_transform(&interior, w, h);
-        let mut deepest: HashMap<u32, (f32, usize)> =
+        let mut deepest: FxHashMap<u32, (f32, usize)> =
             members.iter().map(|&l| (l, (0.0, usize::MAX))).collect();
         for (i, &l) in labels.iter().enumerate() {
             if l != 0 {
@@ -216,8 +216,8 @@ impl Cells {
     }
 
     /// Per cell with a core, its core's mean score.
-    fn core_means(&self) -> HashMap<u32, f64> {
-        let mut sums: HashMap<u32, (f64, usize)> = HashMap::new();
+    fn core_means(&self) -> FxHashMap<u32, f64> {
+        let mut sums: FxHashMap<u32, (f64, usize)> = FxHashMap::default();
         for i in (0..self.labels.len()).filter(|&i| self.in_core(i)) {
             let c = sums.entry(self.labels[i]).or_default();
             c.0 += self.score.data[i] as f64;
@@ -334,7 +334,7 @@ fn contacts(labels: &[u32], w: usize, h: usize) -> Vec<(usize, usize)> {
 /// another divided again by the watershed of `model`'s finest region score
 /// ([`repartition`]). Whether any changed.
 pub fn divide_again(objects: &mut [TrackedObject], labels: &[u32], model: &ImageModel) -> bool {
-    let mut new: HashMap<u32, Vec<Point>> = repartition(labels, model).into_iter().collect();
+    let mut new: FxHashMap<u32, Vec<Point>> = repartition(labels, model).into_iter().collect();
     let changed = !new.is_empty();
     for o in objects.iter_mut() {
         if let Some(ring) = new.remove(&o.track) {
@@ -358,7 +358,7 @@ pub fn join_pieces(pieces: &mut [Vec<TrackedObject>], model: &ImageModel) -> Vec
     let (w, h) = model.size();
     let labels = labels_of(pieces, w, h);
     let roots = joins(&labels, model);
-    let mut rings: HashMap<u32, Vec<Point>> =
+    let mut rings: FxHashMap<u32, Vec<Point>> =
         joined_rings(&labels, &roots, model).into_iter().collect();
     let mut k = 0u32;
     let mut joined = Vec::new();
