@@ -232,6 +232,32 @@ fn a_killed_track_leaves_no_res_track_of_an_earlier_run() {
     );
 }
 
+/// A run started with SIGINT ignored (a background job of a script) keeps ignoring it
+/// and finishes its work.
+#[test]
+fn a_signal_the_run_was_started_ignoring_stays_ignored() {
+    use std::os::unix::process::CommandExt;
+    let d = common::workdir("signals", "ignored");
+    let input = folder(&d, 40);
+    let out = d.join("out");
+    std::fs::create_dir(&out).unwrap();
+    let mut c = batch(&input, &out);
+    // SAFETY: only async-signal-safe calls between fork and exec.
+    unsafe {
+        c.pre_exec(|| {
+            libc::signal(libc::SIGINT, libc::SIG_IGN);
+            Ok(())
+        })
+    };
+    let child = c.stderr(Stdio::null()).spawn().unwrap();
+    wait_for(&out, |n| n.ends_with(".json"));
+    signal(&child, libc::SIGINT);
+    let status = child.wait_with_output().unwrap().status;
+    assert!(status.success(), "{status:?}");
+    let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    assert!(summary.contains("img039.png"), "{summary}");
+}
+
 #[test]
 fn a_killed_batch_leaves_no_summary_of_an_earlier_run() {
     let d = common::workdir("signals", "stale");

@@ -181,6 +181,59 @@ fn a_ctc_result_that_is_a_file_or_the_movie_is_refused_as_such() {
     assert_eq!(std::fs::read(&m).unwrap(), before);
 }
 
+/// A sequence of overlays written over a longer one leaves none of the earlier frames;
+/// files not named as its frames stay.
+#[test]
+fn an_overlay_sequence_over_a_longer_one_leaves_no_frame_of_it() {
+    let d = tmp("ovlseq");
+    std::fs::create_dir_all(&d).unwrap();
+    let (long, short) = (d.join("long.tif"), d.join("short.tif"));
+    movie(&long, &[(80, 64); 5]);
+    movie(&short, &[(80, 64); 3]);
+    let overlay = d.join("o.png");
+    let run = |m: &Path| {
+        Command::new(env!("CARGO_BIN_EXE_topocontour"))
+            .args([
+                "track",
+                m.to_str().unwrap(),
+                "--object",
+                "bright",
+                "--overlay",
+            ])
+            .arg(&overlay)
+            .output()
+            .unwrap()
+    };
+    assert!(run(&long).status.success());
+    for keep in ["o.keep.png", "other.004.png", "o.12.png"] {
+        std::fs::write(d.join(keep), b"mine").unwrap();
+    }
+    std::fs::write(d.join("o.0009.png"), b"another digit count").unwrap();
+    let out = run(&short);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let mut names: Vec<String> = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".png"))
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "o.000.png",
+            "o.001.png",
+            "o.002.png",
+            "o.12.png",
+            "o.keep.png",
+            "other.004.png"
+        ]
+    );
+}
+
 #[test]
 fn levels_beyond_the_pyramid_are_refused() {
     let (m, out) = (tmp("levels.tif"), tmp("levels-res"));

@@ -15,10 +15,29 @@ static GENTLE: AtomicBool = AtomicBool::new(false);
 /// Set by the first signal of a gentle run.
 static ASKED: AtomicBool = AtomicBool::new(false);
 
-/// Installs the handler; once per process, before any output is prepared.
+/// Installs the handler; once per process, before any output is prepared. A signal the
+/// process was started ignoring stays ignored, as shells expect: `nohup` ignores SIGHUP,
+/// and a job run in the background of a script starts with SIGINT ignored, so a Ctrl+C
+/// meant for the script's foreground command must not stop it.
 pub fn install() {
+    let ignored: Vec<libc::c_int> = [libc::SIGINT, libc::SIGTERM, libc::SIGHUP]
+        .into_iter()
+        .filter(|&s| is_ignored(s))
+        .collect();
     // Another handler already installed (a library user's) stays theirs.
     let _ = ctrlc::set_handler(on_signal);
+    for s in ignored {
+        // SAFETY: setting a disposition to SIG_IGN has no handler to be unsafe in.
+        unsafe { libc::signal(s, libc::SIG_IGN) };
+    }
+}
+
+/// Whether signal `sig` is ignored now.
+fn is_ignored(sig: libc::c_int) -> bool {
+    // SAFETY: with a null new action, sigaction only writes the old one into `old`.
+    let mut old: libc::sigaction = unsafe { std::mem::zeroed() };
+    let read = unsafe { libc::sigaction(sig, std::ptr::null(), &mut old) };
+    read == 0 && old.sa_sigaction == libc::SIG_IGN
 }
 
 fn on_signal() {

@@ -229,6 +229,12 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
         })?;
         write(&dir.join("res_track.txt"), lineage.ctc_text().as_bytes())?;
     }
+    if let (Some(out), None) = (&plan.overlay, a.overlay_frame) {
+        let written: Vec<PathBuf> = (0..tracked)
+            .map(|t| numbered(out, t, movie.len()))
+            .collect();
+        remove_stale_overlays(out, &written)?;
+    }
     let mut contents = Vec::new();
     if a.json.is_some() {
         contents.push(ctc::json(movie.name(), &kept, lineage).into_bytes());
@@ -353,12 +359,7 @@ fn prepare(a: &TrackArgs) -> Result<Plan, Failure> {
         OutputFiles::prepare_for(&inputs, &all).map_err(|e| bad(format!("--overlay: {e}")))?;
     }
     if let Some(dir) = &a.ctc {
-        if dir.exists() && !dir.is_dir() {
-            return Err(bad(format!(
-                "--ctc {}: not a folder (the result is a folder of masks)",
-                dir.display()
-            )));
-        }
+        // An existing --ctc that is not a folder was refused by `apart_from_movie`.
         std::fs::create_dir_all(dir)
             .map_err(|e| bad(format!("cannot make the folder {}: {e}", dir.display())))?;
     }
@@ -431,7 +432,7 @@ fn apart_from_movie(a: &TrackArgs) -> Result<(), Failure> {
     }
     if !ctc.is_dir() {
         return Err(bad(format!(
-            "--ctc {}: not a folder (the result is a folder of masks and res_track.txt)",
+            "--ctc {}: not a folder (the result is a folder of masks)",
             given.display()
         )));
     }
@@ -475,6 +476,49 @@ fn apart_from_movie(a: &TrackArgs) -> Result<(), Failure> {
 
 fn write(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
     write_atomic(path, bytes).map_err(|e| bad(e.to_string()))
+}
+
+/// Removes the overlays of an earlier sequence beside `out`'s: regular files named as
+/// [`numbered`] names them (stem, a dot, three digits or more, the extension) other than
+/// `written`. As for the CTC masks: a sequence written over a longer one, or stopped
+/// early, would otherwise go on with frames of another run.
+fn remove_stale_overlays(out: &Path, written: &[PathBuf]) -> Result<(), Failure> {
+    let dir = match out.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let (Some(stem), Some(ext)) = (
+        out.file_stem().and_then(|s| s.to_str()),
+        out.extension().and_then(|s| s.to_str()),
+    ) else {
+        return Ok(());
+    };
+    let ours = |name: &str| {
+        name.strip_prefix(stem)
+            .and_then(|r| r.strip_prefix('.'))
+            .and_then(|r| r.strip_suffix(ext))
+            .and_then(|r| r.strip_suffix('.'))
+            .is_some_and(|d| d.len() >= 3 && d.bytes().all(|b| b.is_ascii_digit()))
+    };
+    let failed = |e: std::io::Error| {
+        bad(format!(
+            "cannot clear the old overlays beside {}: {e}",
+            out.display()
+        ))
+    };
+    for entry in std::fs::read_dir(dir).map_err(failed)? {
+        let entry = entry.map_err(failed)?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if ours(&name)
+            && !written
+                .iter()
+                .any(|w| w.file_name() == Some(entry.file_name().as_os_str()))
+            && entry.file_type().map_err(failed)?.is_file()
+        {
+            std::fs::remove_file(entry.path()).map_err(failed)?;
+        }
+    }
+    Ok(())
 }
 
 /// `out` with frame `t` before its extension: `a.png` → `a.007.png`.
