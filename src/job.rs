@@ -78,6 +78,8 @@ pub struct JobRun {
     pub pages: usize,
     /// With a [`Job::teach`]: the classifier and its probabilities on the image.
     pub taught: Option<Taught>,
+    /// Objects dropped as smaller than `Params::min_area`.
+    pub dropped: usize,
 }
 
 /// Why a job cannot run.
@@ -277,7 +279,7 @@ impl Job {
         let image = image.expect("an owned image is kept");
         ev.free_coarse_levels();
         self.drive(&mut ev)?;
-        ev.filter_clutter();
+        let dropped = ev.filter_clutter();
         Ok(JobRun {
             ev,
             image,
@@ -286,6 +288,7 @@ impl Job {
             page: self.page,
             pages: info.pages,
             taught,
+            dropped,
         })
     }
 

@@ -777,3 +777,37 @@ fn wrap_opens_a_ring_hole_unless_told_not_to() {
     assert_eq!(holes(&[]), 1);
     assert_eq!(holes(&["--no-new-holes"]), 0);
 }
+
+/// Objects dropped as smaller than --min-area are said, not silently missing.
+#[test]
+fn objects_below_the_least_area_are_dropped_with_a_note() {
+    let input = tmp("specks.png");
+    let mut disks = vec![(60.0, 60.0, 16.0)];
+    disks.extend((0..5).map(|k| (14.0 + 20.0 * k as f64, 110.0, 2.0)));
+    common::disks_png(&input, 128, 128, &disks);
+    let run = |extra: &[&str]| {
+        let json = tmp(&format!("specks{}.json", extra.len()));
+        let out = run_ok(
+            bin()
+                .arg("segment")
+                .arg(&input)
+                .args([
+                    "--object", "dark", "--seed", "60,60,6", "--seed", "14,110,1",
+                ])
+                .args(["--seed", "34,110,1", "--json"])
+                .arg(&json)
+                .args(extra),
+        );
+        let objects = read_json(&json)["contours"].as_array().unwrap().len();
+        (objects, String::from_utf8_lossy(&out.stderr).into_owned())
+    };
+    let (objects, err) = run(&[]);
+    assert_eq!(objects, 1, "{err}");
+    assert!(
+        err.contains("smaller than --min-area 20 px² dropped"),
+        "{err}"
+    );
+    let (objects, err) = run(&["--min-area", "4"]);
+    assert_eq!(objects, 3, "{err}");
+    assert!(!err.contains("dropped"), "{err}");
+}

@@ -146,6 +146,15 @@ pub fn segment(a: &SegmentArgs) -> Result<Evolver, Failure> {
             out.held
         ));
     }
+    if run.dropped > 0 {
+        // Said, not silent: a field of specks smaller than the bound would otherwise end
+        // as "0 objects" with no hint why.
+        note(&format!(
+            "note: {} smaller than --min-area {} px² dropped (a smaller --min-area keeps them)",
+            counted(run.dropped, "object"),
+            ev.params().min_area
+        ));
+    }
     if !out.converged {
         note(&format!(
             "note: the contours had not settled after {} frames (limit {}); the result is where they stopped",

@@ -126,10 +126,11 @@ fn measure_region(
 }
 
 /// Removes outer rings whose region is smaller than `min_area` (with everything inside
-/// them) and holes smaller than `min_area` (filling them).
-pub fn drop_small(set: &mut ContourSet, min_area: f64) {
+/// them) and holes smaller than `min_area` (filling them). Returns how many objects (outer
+/// rings) went.
+pub fn drop_small(set: &mut ContourSet, min_area: f64) -> usize {
     if min_area <= 0.0 {
-        return;
+        return 0;
     }
     let parents = set.parents();
     let mut doomed: Vec<ContourId> = parents
@@ -149,7 +150,9 @@ pub fn drop_small(set: &mut ContourSet, min_area: f64) {
         }
         doomed.extend(more);
     }
+    let objects = doomed.iter().filter(|&&id| !set.is_hole(id)).count();
     for id in doomed {
         set.remove_ring(id);
     }
+    objects
 }

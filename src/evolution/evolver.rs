@@ -468,9 +468,9 @@ impl Evolver {
     }
 
     /// Drops outer regions (with their holes) and holes smaller than `min_area`: the
-    /// clutter filter of seed 003 §4.
-    pub fn filter_clutter(&mut self) {
-        crate::contours::measure::drop_small(self.engine.contours_mut(), self.params.min_area);
+    /// clutter filter of seed 003 §4. Returns how many objects went.
+    pub fn filter_clutter(&mut self) -> usize {
+        crate::contours::measure::drop_small(self.engine.contours_mut(), self.params.min_area)
     }
 
     /// Cuts the regions at the septa `line` shows

@@ -22,7 +22,7 @@
 //! deviations, over four pixels at once); only the
 //! adaptive engine nucleates (a new hole is a change of topology).
 
-use crate::contours::ContourSet;
+use crate::contours::{ContourId, ContourSet};
 use crate::geometry::{fill_even_odd, Point};
 use crate::image::field::neighbours8;
 use crate::image::LevelView;
@@ -40,9 +40,10 @@ pub const NUCLEATE_PIXELS: usize = 4;
 pub fn nucleate(set: &mut ContourSet, view: &LevelView, scale: f64) -> Vec<TopologyEvent> {
     let image = view.image();
     let (w, h) = (image.width, image.height);
-    let rings: Vec<Vec<Point>> = set
-        .contour_ids()
-        .map(|id| {
+    let ids: Vec<ContourId> = set.contour_ids().collect();
+    let rings: Vec<Vec<Point>> = ids
+        .iter()
+        .map(|&id| {
             set.ring_points(id)
                 .into_iter()
                 .map(|p| p * (1.0 / scale))
@@ -75,7 +76,7 @@ pub fn nucleate(set: &mut ContourSet, view: &LevelView, scale: f64) -> Vec<Topol
     for &i in &listed {
         candidate.set(i, true);
     }
-    let mut events = Vec::new();
+    let mut centres = Vec::new();
     let mut stack = Vec::new();
     for &start in &listed {
         if !candidate.get(start) {
@@ -101,12 +102,73 @@ pub fn nucleate(set: &mut ContourSet, view: &LevelView, scale: f64) -> Vec<Topol
         if count < NUCLEATE_PIXELS {
             continue;
         }
-        let centre = Point::new((best % w) as f64 + 0.5, (best / w) as f64 + 0.5) * scale;
-        if let Some(event) = open_hole(set, centre, 0.4 * scale) {
-            events.push(event);
+        centres.push(Point::new((best % w) as f64 + 0.5, (best / w) as f64 + 0.5));
+    }
+    // Which ring each hole opens in, for all at once: asking the set for every ring's
+    // parent per hole cost O(rings²) a hole, minutes on a wrap over thousands of specks.
+    // A new hole is a speck in its own piece of background, inside no other new hole, so
+    // the enclosures found before any opens hold for all.
+    let areas: Vec<f64> = ids.iter().map(|&id| set.signed_area(id).abs()).collect();
+    let enclosing = innermost_rings(&rings, &areas, &centres, h);
+    centres
+        .into_iter()
+        .zip(enclosing)
+        .filter_map(|(c, k)| open_hole(set, c * scale, 0.4 * scale, ids[k?]))
+        .collect()
+}
+
+/// For each of `points` (at pixel centres of a level `h` rows high), the index of the
+/// smallest of `rings` (by `areas`) that contains it: a ray along its row to the right
+/// crosses that ring's edges an odd number of times (edges counted half-open in y, so a
+/// vertex on the row counts once). Only the rows with points are looked at.
+fn innermost_rings(
+    rings: &[Vec<Point>],
+    areas: &[f64],
+    points: &[Point],
+    h: usize,
+) -> Vec<Option<usize>> {
+    let row = |p: &Point| (p.y.floor().max(0.0) as usize).min(h.saturating_sub(1));
+    let mut wanted = vec![false; h];
+    for p in points {
+        wanted[row(p)] = true;
+    }
+    // The crossings of each wanted row's centre line: (ring, x).
+    let mut crossings: Vec<Vec<(usize, f64)>> = vec![Vec::new(); h];
+    for (k, ring) in rings.iter().enumerate() {
+        for (i, &a) in ring.iter().enumerate() {
+            let b = ring[(i + 1) % ring.len()];
+            let (lo, hi) = (a.y.min(b.y), a.y.max(b.y));
+            let first = (lo - 0.5).ceil().max(0.0) as usize;
+            for y in first..h {
+                let yc = y as f64 + 0.5;
+                if yc >= hi {
+                    break;
+                }
+                if yc >= lo && wanted[y] {
+                    let x = a.x + (yc - a.y) * (b.x - a.x) / (b.y - a.y);
+                    crossings[y].push((k, x));
+                }
+            }
         }
     }
-    events
+    points
+        .iter()
+        .map(|p| {
+            let mut odd: Vec<usize> = Vec::new();
+            for &(k, x) in &crossings[row(p)] {
+                if x > p.x {
+                    match odd.iter().position(|&o| o == k) {
+                        Some(i) => {
+                            odd.swap_remove(i);
+                        }
+                        None => odd.push(k),
+                    }
+                }
+            }
+            odd.into_iter()
+                .min_by(|&a, &b| areas[a].total_cmp(&areas[b]))
+        })
+        .collect()
 }
 
 /// One bit per pixel: the masks here are image-sized and live at the run's peak (a
@@ -135,9 +197,14 @@ impl Bits {
     }
 }
 
-/// A square hole ring of half-diagonal `r` around `centre` (clockwise: a hole), unless
-/// it would touch a ring; the event names the ring that encloses it.
-fn open_hole(set: &mut ContourSet, centre: Point, r: f64) -> Option<TopologyEvent> {
+/// A square hole ring of half-diagonal `r` around `centre` (clockwise: a hole) inside
+/// ring `from`, unless it would touch a ring.
+fn open_hole(
+    set: &mut ContourSet,
+    centre: Point,
+    r: f64,
+    from: ContourId,
+) -> Option<TopologyEvent> {
     let ring = [
         centre + Point::new(0.0, r),
         centre + Point::new(r, 0.0),
@@ -145,17 +212,46 @@ fn open_hole(set: &mut ContourSet, centre: Point, r: f64) -> Option<TopologyEven
         centre + Point::new(-r, 0.0),
     ];
     let hole = set.add_ring(&ring).ok()?;
-    let enclosing = set
-        .parents()
-        .into_iter()
-        .find_map(|(id, parent)| (id == hole).then_some(parent))
-        .flatten();
-    match enclosing {
-        Some(from) => Some(TopologyEvent::HoleMade { from, hole }),
-        None => {
-            // Outside every region after all: no hole there.
-            set.remove_ring(hole);
-            None
-        }
+    Some(TopologyEvent::HoleMade { from, hole })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::signed_area;
+
+    fn square(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<Point> {
+        vec![
+            Point::new(x0, y0),
+            Point::new(x1, y0),
+            Point::new(x1, y1),
+            Point::new(x0, y1),
+        ]
+    }
+
+    /// An island in a hole of a region, and a region beside: each point finds the
+    /// smallest ring around it, vertices on its row counted once.
+    #[test]
+    fn innermost_rings_find_the_smallest_ring_around_each_point() {
+        let rings = vec![
+            square(1.0, 1.0, 30.0, 30.0),
+            square(5.0, 5.0, 25.0, 25.0),
+            square(10.0, 10.0, 20.0, 20.0),
+            square(40.0, 2.5, 50.0, 12.5),
+        ];
+        let areas: Vec<f64> = rings.iter().map(|r| signed_area(r).abs()).collect();
+        let at = |x: f64, y: f64| Point::new(x + 0.5, y + 0.5);
+        let points = [
+            at(2.0, 15.0),
+            at(7.0, 15.0),
+            at(15.0, 15.0),
+            at(45.0, 2.0),
+            at(45.0, 12.0),
+            at(35.0, 15.0),
+        ];
+        assert_eq!(
+            innermost_rings(&rings, &areas, &points, 40),
+            [Some(0), Some(1), Some(2), Some(3), None, None]
+        );
     }
 }
