@@ -53,6 +53,21 @@ fn track_with(movie: &Path, out: &Path, more: &[&Path]) -> std::process::Output 
         .unwrap()
 }
 
+/// `track MOVIE --object bright --overlay OVERLAY`.
+fn overlaid(movie: &Path, overlay: &Path) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_topocontour"))
+        .args([
+            "track",
+            movie.to_str().unwrap(),
+            "--object",
+            "bright",
+            "--overlay",
+        ])
+        .arg(overlay)
+        .output()
+        .unwrap()
+}
+
 /// Checks that `run` succeeded and wrote `tracks` as OUT/res_track.txt.
 fn tracked(run: &std::process::Output, out: &Path, tracks: &str) {
     assert!(
@@ -141,17 +156,7 @@ fn an_overlay_named_in_another_format_or_a_device_is_refused() {
         ("o.jpg", "an overlay is written as PNG, not .jpg"),
         ("/dev/null", "not a file name"),
     ] {
-        let run = Command::new(env!("CARGO_BIN_EXE_topocontour"))
-            .args([
-                "track",
-                m.to_str().unwrap(),
-                "--object",
-                "bright",
-                "--overlay",
-                name,
-            ])
-            .output()
-            .unwrap();
+        let run = overlaid(&m, Path::new(name));
         let err = String::from_utf8_lossy(&run.stderr);
         assert_eq!(run.status.code(), Some(2), "{name}: {err}");
         assert!(err.contains(says), "{err}");
@@ -191,19 +196,7 @@ fn an_overlay_sequence_over_a_longer_one_leaves_no_frame_of_it() {
     movie(&long, &[(80, 64); 5]);
     movie(&short, &[(80, 64); 3]);
     let overlay = d.join("o.png");
-    let run = |m: &Path| {
-        Command::new(env!("CARGO_BIN_EXE_topocontour"))
-            .args([
-                "track",
-                m.to_str().unwrap(),
-                "--object",
-                "bright",
-                "--overlay",
-            ])
-            .arg(&overlay)
-            .output()
-            .unwrap()
-    };
+    let run = |m: &Path| overlaid(m, &overlay);
     assert!(run(&long).status.success());
     for keep in ["o.keep.png", "other.004.png", "o.12.png"] {
         std::fs::write(d.join(keep), b"mine").unwrap();

@@ -386,32 +386,49 @@ mod tests {
         }
     }
 
+    /// An `n`² grid of dark dots (0.15 on 0.8), one per `pitch`-px cell, of radius `r`
+    /// around the cell's point `c2 / 2` (twice the offset, to centre on a pixel corner).
+    fn dot_grid(n: usize, pitch: usize, c2: i64, r: i64) -> Field {
+        let data = (0..n * n).map(|i| {
+            let (x, y) = (((i % n) % pitch) as i64, ((i / n) % pitch) as i64);
+            let d2 = (2 * x - c2).pow(2) + (2 * y - c2).pow(2);
+            if d2 <= 4 * r * r {
+                0.15
+            } else {
+                0.8
+            }
+        });
+        Field::new(n, n, data.collect())
+    }
+
+    /// Pyramid levels of a dark-object model of `image`, 64 px at the coarsest at most.
+    fn dark_levels(image: &Field) -> usize {
+        let params = ModelParams {
+            coarsest_side: 64,
+            ..ModelParams::seeds(Polarity::Dark, Modality::Generic)
+        };
+        ImageModel::prepare(image, &params, &[]).levels()
+    }
+
+    /// The regions a default run for dark objects finds on `image` from `shape`.
+    fn dark_regions(image: &Field, shape: Shape) -> Vec<crate::contours::measure::Region> {
+        let run = crate::evolution::Params {
+            polarity: Polarity::Dark,
+            ..Default::default()
+        };
+        let mut ev = crate::evolution::Evolver::new(image, &[shape], run).unwrap();
+        ev.run();
+        ev.filter_clutter();
+        crate::contours::measure::regions(ev.contours())
+    }
+
     /// The pyramid stops where the objects would average away: dots of radius 5 every
     /// 16 px keep three levels (they vanished at the fourth, 1/8 scale, and a seed
     /// clicked on one died there), large disks all four; a seed on a dot finds it.
     #[test]
     fn the_pyramid_is_no_deeper_than_the_objects_stay_resolved() {
-        let n = 512;
-        let dots = Field::new(
-            n,
-            n,
-            (0..n * n)
-                .map(|i| {
-                    let (x, y) = ((i % n) % 16, (i / n) % 16);
-                    let d2 = (x as i64 - 8).pow(2) + (y as i64 - 8).pow(2);
-                    if d2 <= 25 {
-                        0.15
-                    } else {
-                        0.8
-                    }
-                })
-                .collect(),
-        );
-        let params = ModelParams {
-            coarsest_side: 64,
-            ..ModelParams::seeds(Polarity::Dark, Modality::Generic)
-        };
-        assert_eq!(ImageModel::prepare(&dots, &params, &[]).levels(), 3);
+        let dots = dot_grid(512, 16, 16, 5);
+        assert_eq!(dark_levels(&dots), 3);
         let big = disks(512, 512);
         let params = ModelParams {
             coarsest_side: 64,
@@ -422,14 +439,7 @@ mod tests {
             center: Point::new(40.5, 40.5),
             radius: 3.0,
         };
-        let run = crate::evolution::Params {
-            polarity: Polarity::Dark,
-            ..Default::default()
-        };
-        let mut ev = crate::evolution::Evolver::new(&dots, &[seed], run).unwrap();
-        ev.run();
-        ev.filter_clutter();
-        let found = crate::contours::measure::regions(ev.contours());
+        let found = dark_regions(&dots, seed);
         assert_eq!(found.len(), 1, "the dot is found");
         assert!((found[0].area - 78.5).abs() < 15.0, "{}", found[0].area);
     }
@@ -440,38 +450,13 @@ mod tests {
     #[test]
     fn the_pyramid_is_no_deeper_than_the_gaps_between_objects_stay_resolved() {
         let n = 384;
-        let dots = Field::new(
-            n,
-            n,
-            (0..n * n)
-                .map(|i| {
-                    let (x, y) = ((i % n) % 12, (i / n) % 12);
-                    let d2 = (2 * x as i64 - 11).pow(2) + (2 * y as i64 - 11).pow(2);
-                    if d2 <= 64 {
-                        0.15
-                    } else {
-                        0.8
-                    }
-                })
-                .collect(),
-        );
-        let params = ModelParams {
-            coarsest_side: 64,
-            ..ModelParams::seeds(Polarity::Dark, Modality::Generic)
-        };
-        assert_eq!(ImageModel::prepare(&dots, &params, &[]).levels(), 2);
+        let dots = dot_grid(n, 12, 11, 4);
+        assert_eq!(dark_levels(&dots), 2);
         let wrap = Shape::Rect {
             min: Point::new(2.0, 2.0),
             max: Point::new(n as f64 - 2.0, n as f64 - 2.0),
         };
-        let run = crate::evolution::Params {
-            polarity: Polarity::Dark,
-            ..Default::default()
-        };
-        let mut ev = crate::evolution::Evolver::new(&dots, &[wrap], run).unwrap();
-        ev.run();
-        ev.filter_clutter();
-        assert_eq!(crate::contours::measure::regions(ev.contours()).len(), 1024);
+        assert_eq!(dark_regions(&dots, wrap).len(), 1024);
     }
 
     /// The seeds and a run without shapes read the same full-resolution level: the
