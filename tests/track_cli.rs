@@ -165,16 +165,20 @@ fn an_overlay_named_in_another_format_or_a_device_is_refused() {
     assert!(!out.exists());
 }
 
-/// `--ctc` naming a file, or the movie file itself, says what is wrong and leaves it be.
+/// `--ctc` naming a file, the movie file itself or a link to nothing says what is wrong
+/// and leaves it be.
 #[test]
 fn a_ctc_result_that_is_a_file_or_the_movie_is_refused_as_such() {
     let (m, file) = (tmp("ctcfile.tif"), tmp("ctcfile"));
     movie(&m, &[(80, 64); 3]);
     std::fs::write(&file, b"keep").unwrap();
     let before = std::fs::read(&m).unwrap();
+    let link = tmp("ctclink");
+    std::os::unix::fs::symlink(tmp("nowhere"), &link).unwrap();
     for (out, says) in [
         (&file, "ctcfile: not a folder"),
         (&m, "ctcfile.tif: that is the movie itself"),
+        (&link, "ctclink: a symbolic link to nothing"),
     ] {
         let run = track(&m, out);
         let err = String::from_utf8_lossy(&run.stderr);
@@ -186,8 +190,9 @@ fn a_ctc_result_that_is_a_file_or_the_movie_is_refused_as_such() {
     assert_eq!(std::fs::read(&m).unwrap(), before);
 }
 
-/// A sequence of overlays written over a longer one leaves none of the earlier frames;
-/// files not named as its frames stay.
+/// A sequence of overlays written over a longer one leaves none of the earlier frames
+/// (also for a name without an extension, whose frames are PNG); files not named as its
+/// frames, with another digit count included, stay.
 #[test]
 fn an_overlay_sequence_over_a_longer_one_leaves_no_frame_of_it() {
     let d = tmp("ovlseq");
@@ -195,36 +200,46 @@ fn an_overlay_sequence_over_a_longer_one_leaves_no_frame_of_it() {
     let (long, short) = (d.join("long.tif"), d.join("short.tif"));
     movie(&long, &[(80, 64); 5]);
     movie(&short, &[(80, 64); 3]);
-    let overlay = d.join("o.png");
-    let run = |m: &Path| overlaid(m, &overlay);
-    assert!(run(&long).status.success());
-    for keep in ["o.keep.png", "other.004.png", "o.12.png"] {
-        std::fs::write(d.join(keep), b"mine").unwrap();
+    for (given, prefix) in [("o.png", "o"), ("p", "p")] {
+        let overlay = d.join(given);
+        let run = |m: &Path| overlaid(m, &overlay);
+        assert!(run(&long).status.success());
+        for keep in ["keep", "12", "0009", "2024"] {
+            std::fs::write(d.join(format!("{prefix}.{keep}.png")), b"mine").unwrap();
+        }
+        let out = run(&short);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let mut names: Vec<String> = std::fs::read_dir(&d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.starts_with(&format!("{prefix}.")))
+            .collect();
+        names.sort();
+        let want = ["000", "0009", "001", "002", "12", "2024", "keep"];
+        let want: Vec<String> = want.iter().map(|k| format!("{prefix}.{k}.png")).collect();
+        assert_eq!(names, want);
     }
-    std::fs::write(d.join("o.0009.png"), b"another digit count").unwrap();
-    let out = run(&short);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let mut names: Vec<String> = std::fs::read_dir(&d)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| n.ends_with(".png"))
-        .collect();
-    names.sort();
-    assert_eq!(
-        names,
-        [
-            "o.000.png",
-            "o.001.png",
-            "o.002.png",
-            "o.12.png",
-            "o.keep.png",
-            "other.004.png"
-        ]
-    );
+}
+
+/// A movie named as a frame of the overlay sequence would be replaced (or cleared as an
+/// earlier frame): refused before anything is written.
+#[test]
+fn a_movie_named_as_an_overlay_frame_is_refused() {
+    let d = tmp("ovlmovie");
+    std::fs::create_dir_all(&d).unwrap();
+    let m = d.join("o.007.png");
+    movie(&m, &[(80, 64); 3]);
+    let before = std::fs::read(&m).unwrap();
+    let run = overlaid(&m, &d.join("o.png"));
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{err}");
+    assert!(err.contains("named like the movie's file"), "{err}");
+    assert_eq!(std::fs::read(&m).unwrap(), before);
+    assert!(!d.join("o.000.png").exists());
 }
 
 #[test]

@@ -230,10 +230,7 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
         write(&dir.join("res_track.txt"), lineage.ctc_text().as_bytes())?;
     }
     if let (Some(out), None) = (&plan.overlay, a.overlay_frame) {
-        let written: Vec<PathBuf> = (0..tracked)
-            .map(|t| numbered(out, t, movie.len()))
-            .collect();
-        remove_stale_overlays(out, &written)?;
+        remove_stale_overlays(out, tracked, movie.len(), &movie.files())?;
     }
     let mut contents = Vec::new();
     if a.json.is_some() {
@@ -347,6 +344,21 @@ fn prepare(a: &TrackArgs) -> Result<Plan, Failure> {
                 out.display()
             )));
         }
+        // A movie file named as one of the sequence's frames would be replaced by it.
+        if a.overlay_frame.is_none() {
+            for &(input, _) in &inputs {
+                let name = input.file_name().map(|n| n.to_string_lossy().into_owned());
+                if folder_of(input) == folder_of(out)
+                    && name.is_some_and(|n| sequence_index(out, &n).is_some())
+                {
+                    return Err(bad(format!(
+                        "--overlay {}: its frames are named like the movie's file {}; give another name",
+                        out.display(),
+                        input.display()
+                    )));
+                }
+            }
+        }
         // Its folder, name and kind checked now, not after the frames before it are
         // tracked (a sequence by its first file; its temporaries go with the check).
         let first = match a.overlay_frame {
@@ -411,6 +423,12 @@ fn apart_from_movie(a: &TrackArgs) -> Result<(), Failure> {
                 )));
             }
         }
+    }
+    if let Some(d) = a.ctc.as_deref().filter(|d| d.is_symlink() && !d.exists()) {
+        return Err(bad(format!(
+            "--ctc {}: a symbolic link to nothing; give a folder",
+            d.display()
+        )));
     }
     let Some((given, ctc)) = a
         .ctc
@@ -479,41 +497,41 @@ fn write(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
 }
 
 /// Removes the overlays of an earlier sequence beside `out`'s: regular files named as
-/// [`numbered`] names them (stem, a dot, three digits or more, the extension) other than
-/// `written`. As for the CTC masks: a sequence written over a longer one, or stopped
-/// early, would otherwise go on with frames of another run.
-fn remove_stale_overlays(out: &Path, written: &[PathBuf]) -> Result<(), Failure> {
+/// this run numbers its frames (`frames` of them, the same digit count), from frame
+/// `tracked` on. As for the CTC masks: a sequence written over a longer one, or stopped
+/// early, would otherwise go on with frames of another run. Files of other names or
+/// digit counts, links, and the movie's own `inputs` are left alone.
+fn remove_stale_overlays(
+    out: &Path,
+    tracked: usize,
+    frames: usize,
+    inputs: &[&Path],
+) -> Result<(), Failure> {
     let dir = match out.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
-    let (Some(stem), Some(ext)) = (
-        out.file_stem().and_then(|s| s.to_str()),
-        out.extension().and_then(|s| s.to_str()),
-    ) else {
-        return Ok(());
-    };
-    let ours = |name: &str| {
-        name.strip_prefix(stem)
-            .and_then(|r| r.strip_prefix('.'))
-            .and_then(|r| r.strip_suffix(ext))
-            .and_then(|r| r.strip_suffix('.'))
-            .is_some_and(|d| d.len() >= 3 && d.bytes().all(|b| b.is_ascii_digit()))
-    };
+    let digits = frame_digits(frames);
     let failed = |e: std::io::Error| {
         bad(format!(
             "cannot clear the old overlays beside {}: {e}",
             out.display()
         ))
     };
+    let inputs: Vec<PathBuf> = inputs
+        .iter()
+        .filter_map(|p| p.canonicalize().ok())
+        .collect();
     for entry in std::fs::read_dir(dir).map_err(failed)? {
         let entry = entry.map_err(failed)?;
         let name = entry.file_name().to_string_lossy().into_owned();
-        if ours(&name)
-            && !written
-                .iter()
-                .any(|w| w.file_name() == Some(entry.file_name().as_os_str()))
+        let stale = sequence_index(out, &name).is_some_and(|(t, d)| d == digits && t >= tracked);
+        if stale
             && entry.file_type().map_err(failed)?.is_file()
+            && !entry
+                .path()
+                .canonicalize()
+                .is_ok_and(|p| inputs.contains(&p))
         {
             std::fs::remove_file(entry.path()).map_err(failed)?;
         }
@@ -521,13 +539,40 @@ fn remove_stale_overlays(out: &Path, written: &[PathBuf]) -> Result<(), Failure>
     Ok(())
 }
 
-/// `out` with frame `t` before its extension: `a.png` → `a.007.png`.
-fn numbered(out: &Path, t: usize, frames: usize) -> PathBuf {
-    let digits = frames.saturating_sub(1).to_string().len().max(3);
+/// `out`'s stem and extension, as a sequence's file names use them (`overlay`, `png`
+/// for a name without).
+fn sequence_parts(out: &Path) -> (&str, &str) {
     let stem = out
         .file_stem()
         .and_then(|s| s.to_str())
         .unwrap_or("overlay");
-    let ext = out.extension().and_then(|s| s.to_str()).unwrap_or("png");
+    (
+        stem,
+        out.extension().and_then(|s| s.to_str()).unwrap_or("png"),
+    )
+}
+
+/// Digits of a sequence's frame numbers for a movie of `frames` frames (three at least).
+fn frame_digits(frames: usize) -> usize {
+    frames.saturating_sub(1).to_string().len().max(3)
+}
+
+/// The frame number and its digit count of `name` if it is named as a frame of `out`'s
+/// sequence ([`numbered`]).
+fn sequence_index(out: &Path, name: &str) -> Option<(usize, usize)> {
+    let (stem, ext) = sequence_parts(out);
+    let d = name
+        .strip_prefix(stem)?
+        .strip_prefix('.')?
+        .strip_suffix(ext)?
+        .strip_suffix('.')?;
+    let digits = d.len() >= 3 && d.bytes().all(|b| b.is_ascii_digit());
+    digits.then(|| Some((d.parse().ok()?, d.len()))).flatten()
+}
+
+/// `out` with frame `t` before its extension: `a.png` → `a.007.png`.
+fn numbered(out: &Path, t: usize, frames: usize) -> PathBuf {
+    let digits = frame_digits(frames);
+    let (stem, ext) = sequence_parts(out);
     out.with_file_name(format!("{stem}.{t:0digits$}.{ext}"))
 }

@@ -23,12 +23,15 @@
 //! ([`MIN_STUB_ASPECT`]) with its sister of one size: a wide rod's daughters are born
 //! stubby, and a cap cut off a long rod's end is small beside the rest.
 //!
-//! Round lobes (a dividing nucleus) are cut only where the neck is much narrower than
-//! the lobes ([`ROUND_NARROW`]), the image along it is half-way to the background or more
-//! ([`ROUND_GAP`]) and the lobes are of one size ([`ROUND_SHARE`]): sister nuclei start a
-//! thin blurred gap apart, which the region model still counts as inside, so the contour
-//! splits by itself only a frame or two after the division; a condensing mother has no
-//! neck, and an unequal hourglass is left to pinch by itself.
+//! Round lobes (a dividing nucleus) are cut only where the lobes are of one size
+//! ([`ROUND_SHARE`]) and either the neck is much narrower than the lobes
+//! ([`ROUND_NARROW`]) with the image along it half-way to the background or more
+//! ([`ROUND_GAP`]) — sister nuclei start a thin blurred gap apart, which the region model
+//! still counts as inside, so the contour splits by itself only a frame or two after the
+//! division — or the outline turns sharply inward at both ends of a narrow neck
+//! ([`ROUND_NOTCH_TURN`]): the nearly round sister caps of a wide rod, dark where they
+//! meet. A condensing mother has no neck, and an unequal hourglass is left to pinch by
+//! itself.
 //!
 //! A taught run (issue 25) cuts its final objects the same way, but reads the septum
 //! from the classifier's P(boundary) and lets it choose the chord
@@ -97,6 +100,20 @@ pub const ROUND_NARROW: f64 = 0.4;
 /// Round lobes: the least septum share along the neck: the gap is half-way to the
 /// background or more (0.50–0.76 at births on seeds 1, 2), a nucleus's texture is not.
 pub const ROUND_GAP: f64 = 0.4;
+
+/// Round lobes with no gap between them are cut where the outline turns inward by at
+/// least this much (radians, both ends of the neck together) and the neck is narrower
+/// than [`ROUND_NOTCH_NARROW`] of the thinner lobe: the sister caps of a wide rod meet
+/// at a sharp notch from their first frame, dark between them (the contact line forms
+/// later), and are nearly round. The round necks tried on one such movie turned 2.6–3.5
+/// rad at 0.19–0.43 widths; a nucleus splits at a gap first ([`ROUND_GAP`]). Under the gap rule alone the
+/// synthetic rods 13–17 px wide divided 1–3 frames late (division F1 0.48–0.78); the
+/// turn chosen between 1.6 and 2.2, where F1 is flat (docs/decisions.md, 2026-12-06).
+pub const ROUND_NOTCH_TURN: f64 = 2.0;
+
+/// Round lobes meeting at a notch: the widest neck cut ([`ROUND_NOTCH_TURN`]), as a
+/// share of the thinner lobe's width.
+pub const ROUND_NOTCH_NARROW: f64 = 0.5;
 
 /// Round lobes: the smaller lobe's least area, as a share of the larger: sisters are of
 /// one size (0.86–1.0 at births); an unequal hourglass (sim_plus's mother a frame before
@@ -337,8 +354,10 @@ pub fn neck_cut_along(
     let rods = aspect >= MIN_LOBE_ASPECT || (aspect >= MIN_STUB_ASPECT && share >= ROUND_SHARE);
     if !rods {
         // Round lobes: sister nuclei a thin gap apart that the contour still bridges.
-        let ok = d < ROUND_NARROW * width && line >= ROUND_GAP && share >= ROUND_SHARE;
-        return ok.then_some((a, b));
+        let gap = d < ROUND_NARROW * width && line >= ROUND_GAP;
+        let caps = d < ROUND_NOTCH_NARROW * width
+            && notch_turn(ring, i, width) + notch_turn(ring, j, width) >= ROUND_NOTCH_TURN;
+        return ((gap || caps) && share >= ROUND_SHARE).then_some((a, b));
     }
     let turn = notch_turn(ring, i, width) + notch_turn(ring, j, width);
     let cut = d < (NARROW + SEPTUM_WIDENS * line + NOTCH_WIDENS * turn) * width
@@ -494,7 +513,7 @@ mod tests {
     }
 
     #[test]
-    fn two_rods_end_to_end_are_cut_at_their_neck_and_round_lobes_are_not() {
+    fn two_rods_end_to_end_and_two_round_caps_are_cut_at_their_neck_an_hourglass_is_not() {
         // Two rods of radius 4.5 whose caps overlap by 0.5 px: a neck of about 3, a third
         // of their width (on a flat image, no line along it: the outline alone).
         let img = flat();
@@ -508,16 +527,24 @@ mod tests {
             (lo - 16.0).abs() < 3.0 && (hi - 38.0).abs() < 3.0,
             "{cp:?} {cq:?}"
         );
-        // Two disks on a neck as narrow: a pinching nucleus, left to split by itself.
-        let disk = |cx: f64| -> Vec<Point> {
+        let disk = |cx: f64, r: f64| -> Vec<Point> {
             (0..48)
                 .map(|k| {
                     let t = std::f64::consts::TAU * k as f64 / 48.0;
-                    Point::new(cx + 10.0 * t.cos(), 20.0 + 10.0 * t.sin())
+                    Point::new(cx + r * t.cos(), 20.0 + r * t.sin())
                 })
                 .collect()
         };
-        assert!(neck_cut(&union_of(&disk(20.0), &disk(39.5)), &img).is_none());
+        // Two disks of one size on a neck as narrow, dark between them: the nearly round
+        // sister caps of a wide rod, cut at their notch.
+        let (p, q) =
+            neck_cut(&union_of(&disk(20.0, 10.0), &disk(39.5, 10.0)), &img).expect("sister caps");
+        let (cp, cq) = (centre(&p), centre(&q));
+        assert!((cp.x.min(cq.x) - 20.0).abs() < 2.0 && (cp.x.max(cq.x) - 39.5).abs() < 2.0);
+        // Disks of unequal size on a narrow neck (an hourglass, left to pinch by itself),
+        // and disks overlapping into a wide waist: not cut.
+        assert!(neck_cut(&union_of(&disk(20.0, 10.0), &disk(36.5, 7.0)), &img).is_none());
+        assert!(neck_cut(&union_of(&disk(20.0, 10.0), &disk(34.0, 10.0)), &img).is_none());
     }
 
     #[test]
