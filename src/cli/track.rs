@@ -507,9 +507,8 @@ fn remove_stale_overlays(
     frames: usize,
     inputs: &[&Path],
 ) -> Result<(), Failure> {
-    let dir = match out.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
+    let Some(dir) = folder_of(out) else {
+        return Ok(());
     };
     let digits = frame_digits(frames);
     let failed = |e: std::io::Error| {

@@ -134,12 +134,10 @@ impl ContourSet {
             let r = self.ring(l);
             self.loop_is_outer(r.anchor, r.area2)
         };
-        !plan.crossings.is_empty()
-            && plan.crossings.iter().any(|c| {
-                let l = self.label[c.edge as usize];
-                l != plan.label && outer(l)
-            })
-            && outer(plan.label)
+        plan.crossings.iter().any(|c| {
+            let l = self.label[c.edge as usize];
+            l != plan.label && outer(l)
+        }) && outer(plan.label)
     }
 }
 
