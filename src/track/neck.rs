@@ -14,7 +14,9 @@
 //! inside a cell, 1 outside; [`SEPTUM_WIDENS`]) and by how sharply the outline turns
 //! inward at the chord's ends ([`NOTCH_WIDENS`]): caps meeting at half the width are cut,
 //! a mother's waist as narrow is not, a full-width contact needs a full line and sharp
-//! corners (rods side by side that turned apart). A neck wider than [`WIDE_NECK`] of
+//! corners (rods side by side that turned apart). A neck of [`SMOOTH_NECK`] widths or
+//! more that bends less than [`SMOOTH_TURN`] is a mother's last waist and is not cut
+//! unless a clear line runs along it. A neck wider than [`WIDE_NECK`] of
 //! the width needs a line whatever its corners: in a crowded colony neighbours press
 //! notches into a rod's outline. A straight or bent single rod, a kidney and an ellipse
 //! have no such neck and no line along it.
@@ -78,6 +80,31 @@ pub const WIDE_NECK: f64 = 0.7;
 
 /// The least septum share along a neck wider than [`WIDE_NECK`] for a cut.
 pub const WIDE_NECK_LINE: f64 = 0.3;
+
+/// A neck at least this wide (a share of the thinner rod's width) whose outline turns
+/// less than [`SMOOTH_TURN`] at its ends is a mother's last waist, not two caps, and is
+/// not cut (unless a clear line runs along it, [`SMOOTH_LINE`]). The widening by the
+/// line and the turn alone cut such waists a frame early: on 24 synthetic movies the
+/// cuts a frame before the birth turned 0.76–1.14 rad at 0.50–0.62 widths, those at the
+/// birth 1.16–2.13 (10th to 90th percentile); docs/decisions.md, 2026-12-06.
+pub const SMOOTH_NECK: f64 = 0.4;
+
+/// The least turn (radians, both ends of the neck together) of a neck at least
+/// [`SMOOTH_NECK`] wide for a cut.
+pub const SMOOTH_TURN: f64 = 1.0;
+
+/// A neck along which the image is at least this background-like (septum share) is cut
+/// however gently it bends: a septum line that shows is the division, whatever the
+/// outline does. No waist the bound above refused on the synthetic movies had one over
+/// 0.46.
+pub const SMOOTH_LINE: f64 = 0.5;
+
+/// The bound on a gentle neck ([`SMOOTH_NECK`]) holds only for rods at least this wide
+/// (pixels, the lobes' band width): the turn is measured over an arc of a quarter width,
+/// which on thinner rods spans little more than a pixel, so two caps meeting turn as
+/// little as a waist (rods 6–7.5 px wide: a quarter of their cuts at birth turned under
+/// 1 rad, against 2% on rods 8–10 px wide).
+pub const SMOOTH_MIN_WIDTH: f64 = 5.5;
 
 /// Each lobe at least this elongated (major over minor axis of its second moments): a
 /// rod. A nucleus pinches into round lobes, and the contour splits it by itself when
@@ -360,8 +387,15 @@ pub fn neck_cut_along(
         return ((gap || caps) && share >= ROUND_SHARE).then_some((a, b));
     }
     let turn = notch_turn(ring, i, width) + notch_turn(ring, j, width);
+    // A mother's last waist: wide, bending gently, no clear line (on rods wide enough
+    // for the turn to be measured).
+    let waist = d >= SMOOTH_NECK * width
+        && turn < SMOOTH_TURN
+        && line < SMOOTH_LINE
+        && width >= SMOOTH_MIN_WIDTH;
     let cut = d < (NARROW + SEPTUM_WIDENS * line + NOTCH_WIDENS * turn) * width
-        && (d <= WIDE_NECK * width || line >= WIDE_NECK_LINE);
+        && (d <= WIDE_NECK * width || line >= WIDE_NECK_LINE)
+        && !waist;
     cut.then_some((a, b))
 }
 
@@ -607,34 +641,7 @@ mod tests {
         // constricting mother): at 0.55 of the width the outline bends gently, unlike two
         // caps meeting at the same width; pinched to 0.3 it is cut by its narrowness alone.
         let img = flat();
-        let waist = |pinch: f64| -> Vec<Point> {
-            let (r, x0, x1, y) = (4.5, 12.0, 48.0, 30.0);
-            let half = |x: f64| {
-                let u = (x - 0.5 * (x0 + x1)) / (0.45 * 2.0 * r);
-                r * (1.0 - pinch * (-u * u).exp())
-            };
-            let mut pts = Vec::new();
-            for k in 0..=72 {
-                let x = x0 + (x1 - x0) * k as f64 / 72.0;
-                pts.push(Point::new(x, y - half(x)));
-            }
-            for k in 1..16 {
-                let a = -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
-                pts.push(Point::new(x1 + r * a.cos(), y + r * a.sin()));
-            }
-            for k in 0..=72 {
-                let x = x1 - (x1 - x0) * k as f64 / 72.0;
-                pts.push(Point::new(x, y + half(x)));
-            }
-            for k in 1..16 {
-                let a = std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
-                pts.push(Point::new(x0 + r * a.cos(), y + r * a.sin()));
-            }
-            if signed_area(&pts) < 0.0 {
-                pts.reverse();
-            }
-            pts
-        };
+        let waist = |pinch: f64| waist(4.5, pinch);
         assert!(neck_cut(&waist(0.45), &img).is_none());
         let (p, q) = neck_cut(&waist(0.7), &img).expect("a deep waist is a neck");
         let (cp, cq) = (centre(&p), centre(&q));
@@ -653,6 +660,69 @@ mod tests {
             "the caps meet over half the width"
         );
         assert!(neck_cut(&ring, &img).is_some());
+    }
+
+    #[test]
+    fn a_gentle_waist_is_cut_only_with_a_clear_line_unless_the_rod_is_thin() {
+        // The waist of a rod 9 px wide narrowed to 0.6 of it, smoothly, with a faint line
+        // along it (septum share 0.45): the mother's last frame, not cut. The same with a
+        // clear line (0.8) is cut, and so is the faint one on a rod 5 px wide, whose
+        // outline is too coarse for its turn to tell a waist from two caps.
+        let lined = |ring: &[Point], share: f64| {
+            Field::new(
+                64,
+                64,
+                (0..64 * 64)
+                    .map(|i| {
+                        let p = Point::new((i % 64) as f64 + 0.5, (i / 64) as f64 + 0.5);
+                        match (winding_number(ring, p) != 0, (29..31).contains(&(i % 64))) {
+                            (false, _) => 0.0,
+                            (true, false) => 1.0,
+                            (true, true) => 1.0 - share as f32,
+                        }
+                    })
+                    .collect(),
+            )
+        };
+        let wide = waist(4.5, 0.4);
+        assert!(neck_cut(&wide, &lined(&wide, 0.45)).is_none());
+        assert!(neck_cut(&wide, &lined(&wide, 0.8)).is_some());
+        let thin = waist(2.5, 0.4);
+        let (p, q) = neck_cut(&thin, &lined(&thin, 0.45)).expect("a thin rod's waist");
+        let (cp, cq) = (centre(&p), centre(&q));
+        assert!(cp.x.min(cq.x) < 30.0 && cp.x.max(cq.x) > 30.0);
+    }
+
+    /// A rod of radius `r` along y = 30 from x = 12 to 48 whose waist at x = 30 narrows
+    /// smoothly by `pinch` of its width (a Gaussian over 0.45 widths, as a constricting
+    /// mother's), region on the left.
+    fn waist(r: f64, pinch: f64) -> Vec<Point> {
+        let (x0, x1, y) = (12.0, 48.0, 30.0);
+        let half = |x: f64| {
+            let u = (x - 0.5 * (x0 + x1)) / (0.45 * 2.0 * r);
+            r * (1.0 - pinch * (-u * u).exp())
+        };
+        let mut pts = Vec::new();
+        for k in 0..=72 {
+            let x = x0 + (x1 - x0) * k as f64 / 72.0;
+            pts.push(Point::new(x, y - half(x)));
+        }
+        for k in 1..16 {
+            let a = -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
+            pts.push(Point::new(x1 + r * a.cos(), y + r * a.sin()));
+        }
+        for k in 0..=72 {
+            let x = x1 - (x1 - x0) * k as f64 / 72.0;
+            pts.push(Point::new(x, y + half(x)));
+        }
+        for k in 1..16 {
+            let a = std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
+            pts.push(Point::new(x0 + r * a.cos(), y + r * a.sin()));
+        }
+        if signed_area(&pts) < 0.0 {
+            pts.reverse();
+        }
+        pts
     }
 
     /// The outline of the union of two convex rings overlapping a little along x (the
