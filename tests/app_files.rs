@@ -42,6 +42,56 @@ fn closing_with_work_not_saved_asks_first() {
 }
 
 #[test]
+fn opening_over_work_not_saved_says_that_work_waits_in_undo() {
+    let mut h = harness(bright_bridge_with_seeds(&[(40.0, 40.0, 5.0)]));
+    h.step();
+    let work =
+        |h: &egui_kittest::Harness<'_, TopoApp>| h.state().unsaved_work().unwrap_or_default();
+    // Another image opened over the seed: the image has nothing to save, the seed is in
+    // Undo, and closing says so.
+    h.state_mut()
+        .send(Command::OpenImage(case_image("blobs_wrap")));
+    h.step();
+    assert_no_error(&h);
+    assert!(!close_window(&mut h), "the seed waits in Undo: asked");
+    h.get_by_label_contains("before you opened image.png");
+    assert!(!work(&h).contains("as a session"), "{}", work(&h));
+    click_label(&mut h, "Cancel");
+    // Undo: the seed is on screen again, and the question is about it.
+    h.state_mut().send(Command::Undo);
+    h.step();
+    assert_eq!(h.state().doc.shapes.len(), 1);
+    assert!(work(&h).contains("not saved as a session"), "{}", work(&h));
+    assert!(!work(&h).contains("before you opened"), "{}", work(&h));
+    // A session saved, a seed added, the session opened again over it: the same.
+    let path = save_session(&mut h, "reopen.json");
+    h.state_mut()
+        .send(Command::AddShape(topocontour::evolution::Shape::Disk {
+            center: topocontour::Point::new(60.0, 40.0),
+            radius: 5.0,
+        }));
+    h.step();
+    h.state_mut().send(Command::OpenSession(path.clone()));
+    h.step();
+    assert_no_error(&h);
+    assert_eq!(h.state().doc.shapes.len(), 1, "the session's one seed");
+    let name = path.file_name().unwrap().to_string_lossy().into_owned();
+    assert_eq!(
+        work(&h),
+        format!("Your work before you opened {name} is not saved (Undo brings it back).")
+    );
+    // Nothing unsaved: an opened file asks nothing.
+    let mut h = harness(bright_bridge_with_seeds(&[]));
+    h.step();
+    h.state_mut().send(Command::OpenSession(path));
+    h.step();
+    assert!(
+        close_window(&mut h),
+        "a session opened over nothing: not asked"
+    );
+}
+
+#[test]
 fn export_writes_an_svg_that_parses_and_reset_clears() {
     let mut h = harness(TopoApp::with_sample());
     h.step();

@@ -11,13 +11,42 @@ use crate::geometry::Point;
 impl TopoApp {
     /// Applies one command.
     pub(super) fn apply_now(&mut self, c: Command) {
+        let opened = match &c {
+            Command::OpenImage(p) | Command::OpenSession(p) | Command::OpenMovie(p) => {
+                Some(p.file_name().map_or_else(
+                    || p.display().to_string(),
+                    |n| n.to_string_lossy().into_owned(),
+                ))
+            }
+            _ => None,
+        };
+        if opened.is_some() {
+            // An earlier error goes (a success clears it anyway), so one now is this one's.
+            let before = self.unsaved_work();
+            self.status.error = None;
+            self.apply_to_document(c);
+            if self.status.error.is_none() {
+                // The document is the file opened: nothing of it to save. Work before it
+                // stays in Undo, and closing says so.
+                self.unsaved = false;
+                if before.is_some() {
+                    self.replaced = opened;
+                }
+            }
+            return;
+        }
+        if matches!(c, Command::Undo | Command::Redo) {
+            // The document on screen is the one the question then describes.
+            self.replaced = None;
+        }
+        self.apply_to_document(c);
+    }
+
+    /// Applies one command to the document: an undo step first when it starts one.
+    fn apply_to_document(&mut self, c: Command) {
         if self.history.starts_step(&c) {
             self.history.push(self.doc.clone());
-            // Opening adds no work of the user's (and the work before stays in Undo).
-            self.unsaved |= !matches!(
-                c,
-                Command::OpenImage(_) | Command::OpenSession(_) | Command::OpenMovie(_)
-            );
+            self.unsaved = true;
         }
         self.unsaved |= matches!(
             c,

@@ -189,8 +189,19 @@ impl TopoApp {
         }
     }
 
-    /// What closing now would lose, in a sentence; None when nothing.
+    /// What closing now would lose, in a sentence or two; None when nothing.
     pub fn unsaved_work(&self) -> Option<String> {
+        let replaced = self.replaced.as_ref().map(|name| {
+            format!("Your work before you opened {name} is not saved (Undo brings it back).")
+        });
+        match (self.own_unsaved_work(), replaced) {
+            (Some(own), Some(before)) => Some(format!("{own} {before}")),
+            (own, before) => own.or(before),
+        }
+    }
+
+    /// What closing now would lose of the document on screen.
+    fn own_unsaved_work(&self) -> Option<String> {
         if !self.unsaved {
             return None;
         }
