@@ -39,6 +39,8 @@
 //! - a cell whose outline has a neck with the image brighter along it ([`neck`]) is cut
 //!   there: sister rods touching end to end never pinch apart in the image, so no split
 //!   event comes, and the cut is their division (children of the mother, as a split's);
+//!   an outline of two rods side by side, which has no neck, is cut along their contact
+//!   ([`side`]) in the same way;
 //! - a new cell (on frame 0 or picked up later) that does not stand out from the band
 //!   around it ([`contrast`]) is dropped: seeds on a gently darker corner of uneven
 //!   light settle into such blobs; a carried cell is dropped, ending its track, below
@@ -61,6 +63,7 @@ pub mod lineage;
 pub mod neck;
 pub mod partition;
 mod resume;
+pub mod side;
 
 pub use lineage::{Division, Lineage, Track};
 
@@ -317,6 +320,13 @@ impl Tracker {
         };
         let groups = claim(&origins, pieces);
         let groups = self.without_faint(groups, image);
+        let rods = side::rod_width(
+            groups
+                .iter()
+                .flat_map(|(_, g)| g.iter().map(|o| o.ring.as_slice())),
+        );
+        // Cells found alongside another under one outline ([`side`]): tracks of their own.
+        let mut alongside: Vec<TrackedObject> = Vec::new();
         for (owner, group) in groups {
             // Sisters touching end to end never pinch apart in the image: cut at necks.
             let mut cut: Vec<TrackedObject> = Vec::with_capacity(group.len());
@@ -326,14 +336,23 @@ impl Tracker {
                     cut.push(o);
                     continue;
                 }
-                match neck::cut_at_necks(&o.ring, image, None) {
-                    Some(rings) => cut.extend(rings.into_iter().map(object)),
-                    None => cut.push(o),
+                if let Some(rings) = neck::cut_at_necks(&o.ring, image, None) {
+                    cut.extend(rings.into_iter().map(object));
+                } else if let Some((a, b)) = rods.and_then(|w| side::side_cut(&o.ring, w, image)) {
+                    // Rods side by side have no neck: two cells read as one, the larger
+                    // going on as the outline's cell ([`side`]).
+                    let (a, b) = (object(a), object(b));
+                    let (keep, other) = if a.area >= b.area { (a, b) } else { (b, a) };
+                    cut.push(keep);
+                    alongside.push(other);
+                } else {
+                    cut.push(o);
                 }
             }
             cut.sort_by(|x, y| y.area.total_cmp(&x.area));
             self.settle(owner, cut, &mut frame);
         }
+        self.settle(None, alongside, &mut frame);
         frame.objects.sort_by_key(|o| o.track);
         let raster = |objects: &[TrackedObject]| {
             let rings: Vec<(u32, &[Point])> = objects

@@ -452,7 +452,14 @@ fn along(f: &Field, p: Point, q: Point) -> f64 {
 /// How background-like the image is along the middle half of the chord `p`–`q`: 0 as
 /// dark as the lobes' cores, 1 as the band just outside the outline (a septum line or
 /// the gap between two touching caps; a constricting waist is still the cell's own).
-fn septum(ring: &[Point], a: &[Point], b: &[Point], p: Point, q: Point, image: &Field) -> f64 {
+pub(crate) fn septum(
+    ring: &[Point],
+    a: &[Point],
+    b: &[Point],
+    p: Point,
+    q: Point,
+    image: &Field,
+) -> f64 {
     let mean = |pts: &mut dyn Iterator<Item = Point>| {
         let (mut s, mut n) = (0.0, 0usize);
         for x in pts {
@@ -483,7 +490,7 @@ fn septum(ring: &[Point], a: &[Point], b: &[Point], p: Point, q: Point, image: &
 
 /// The aspect (major over minor axis) of polygon `p`'s second moments, its width across
 /// the major axis (a band's, √(12 × minor moment / area)) and that axis (unit).
-fn elongation(p: &[Point]) -> (f64, f64, Point) {
+pub(crate) fn elongation(p: &[Point]) -> (f64, f64, Point) {
     let n = p.len();
     let (a2, c) = area2_centroid(p);
     if a2.abs() < 1e-9 {
