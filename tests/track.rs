@@ -552,3 +552,57 @@ fn a_nucleus_that_parts_for_one_frame_did_not_divide() {
     // Daughters that stay apart divided.
     assert_eq!(track(&parting(false)), "1 0 2 0\n2 3 6 1\n3 3 6 1\n");
 }
+
+#[test]
+fn two_rods_side_by_side_under_one_outline_are_two_tracks() {
+    // A rectangle dragged around two rods lying side by side shrinks onto both as one
+    // outline (a faint seam between them, and no neck); a click on each of two single
+    // rods beside them shows how wide one rod of this movie is. The outline twice as
+    // wide, dipping at both ends of the contact, is two cells from frame 0 on, neither
+    // the other's child.
+    let params = Params {
+        polarity: Polarity::Bright,
+        ..Params::default()
+    };
+    let mut init: Vec<Shape> = [10.0, 86.0]
+        .map(|x| Shape::Disk {
+            center: Point::new(x, 26.0),
+            radius: 3.0,
+        })
+        .into();
+    init.push(Shape::Rect {
+        min: Point::new(22.0, 19.0),
+        max: Point::new(72.0, 45.0),
+    });
+    let settings = TrackSettings {
+        auto_seeds: false,
+        ..TrackSettings::new(params)
+    };
+    let mut tracker = Tracker::new(settings, init);
+    for f in &offset_pair(3) {
+        tracker.step(f).unwrap();
+    }
+    assert_eq!(
+        tracker.lineage().ctc_text(),
+        "1 0 2 0\n2 0 2 0\n3 0 2 0\n4 0 2 0\n",
+        "each rod its own track"
+    );
+}
+
+/// Two rods side by side, one shifted along the other by a third of its length, a faint
+/// seam between them, and two single upright rods beside them; `n` still frames.
+fn offset_pair(n: usize) -> Vec<Field> {
+    let pair = [
+        (Point::new(30.0, 27.4), Point::new(54.0, 27.4), 4.5),
+        (Point::new(40.0, 36.6), Point::new(64.0, 36.6), 4.5),
+    ];
+    let mut cells = upright_rods(&[10.0, 86.0], 0.0, 0.0);
+    cells.extend(pair);
+    let f = with_line(
+        frame(&cells),
+        Point::new(30.0, 32.0),
+        Point::new(70.0, 32.0),
+        0.6,
+    );
+    vec![blurred(f); n]
+}
