@@ -24,12 +24,26 @@ pub fn install() {
         .into_iter()
         .filter(|&s| is_ignored(s))
         .collect();
+    // The ignored signals are blocked until they are ignored again: one arriving while
+    // the handler is briefly theirs stays pending, and setting SIG_IGN discards it.
+    // SAFETY: plain calls on a local signal set; the old mask is restored below.
+    let mut old: libc::sigset_t = unsafe { std::mem::zeroed() };
+    unsafe {
+        let mut block: libc::sigset_t = std::mem::zeroed();
+        libc::sigemptyset(&mut block);
+        for &s in &ignored {
+            libc::sigaddset(&mut block, s);
+        }
+        libc::pthread_sigmask(libc::SIG_BLOCK, &block, &mut old);
+    }
     // Another handler already installed (a library user's) stays theirs.
     let _ = ctrlc::set_handler(on_signal);
     for s in ignored {
         // SAFETY: setting a disposition to SIG_IGN has no handler to be unsafe in.
         unsafe { libc::signal(s, libc::SIG_IGN) };
     }
+    // SAFETY: the mask saved above.
+    unsafe { libc::pthread_sigmask(libc::SIG_SETMASK, &old, std::ptr::null_mut()) };
 }
 
 /// Whether signal `sig` is ignored now.
