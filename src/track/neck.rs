@@ -343,28 +343,9 @@ pub fn neck_cut_along(
     if !off_edge(ring[i]) || !off_edge(ring[j]) {
         return None;
     }
-    let a: Vec<Point> = ring[i..=j].to_vec();
-    let b: Vec<Point> = ring[j..].iter().chain(&ring[..=i]).copied().collect();
-    // The chord runs inside the cell (not across a bay outside it).
-    let mid = (ring[i] + ring[j]) * 0.5;
-    if winding_number(ring, mid) == 0 {
-        return None;
-    }
+    let (a, b) = lobes(ring, i, j)?;
     let (aa, ab) = (signed_area(&a), signed_area(&b));
     if aa <= 0.0 || ab <= 0.0 || aa.min(ab) < MIN_DAUGHTER_SHARE * aa.max(ab) {
-        return None;
-    }
-    // The chord crosses no other edge: both lobes are simple.
-    let crosses = (0..n).any(|k| {
-        let l = (k + 1) % n;
-        ![i, j].contains(&k)
-            && ![i, j].contains(&l)
-            && !matches!(
-                segment_intersection(ring[i], ring[j], ring[k], ring[l]),
-                SegmentIntersection::None
-            )
-    });
-    if crosses {
         return None;
     }
     let (la, lb) = (elongation(&a), elongation(&b));
@@ -397,6 +378,31 @@ pub fn neck_cut_along(
         && (d <= WIDE_NECK * width || line >= WIDE_NECK_LINE)
         && !waist;
     cut.then_some((a, b))
+}
+
+/// The two lobes of `ring` on either side of the chord from `ring[i]` to `ring[j]`
+/// (`i < j`), each made of `ring`'s points, when the chord runs inside the ring (not
+/// across a bay outside it) and crosses none of its edges (both lobes are simple).
+pub(crate) fn lobes(ring: &[Point], i: usize, j: usize) -> Option<(Vec<Point>, Vec<Point>)> {
+    let n = ring.len();
+    if winding_number(ring, (ring[i] + ring[j]) * 0.5) == 0 {
+        return None;
+    }
+    let crosses = (0..n).any(|k| {
+        let l = (k + 1) % n;
+        ![i, j].contains(&k)
+            && ![i, j].contains(&l)
+            && !matches!(
+                segment_intersection(ring[i], ring[j], ring[k], ring[l]),
+                SegmentIntersection::None
+            )
+    });
+    if crosses {
+        return None;
+    }
+    let a: Vec<Point> = ring[i..=j].to_vec();
+    let b: Vec<Point> = ring[j..].iter().chain(&ring[..=i]).copied().collect();
+    Some((a, b))
 }
 
 /// How far the outline turns inward (radians, ≥ 0) at `ring[k]`: the angle between the
@@ -520,11 +526,11 @@ pub(crate) fn elongation(p: &[Point]) -> (f64, f64, Point) {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// A capsule (rod) from `c0` to `c1` of radius `r`, region on the left.
-    fn rod(c0: Point, c1: Point, r: f64) -> Vec<Point> {
+    pub(crate) fn rod(c0: Point, c1: Point, r: f64) -> Vec<Point> {
         let ang = (c1.y - c0.y).atan2(c1.x - c0.x);
         let mut pts = Vec::new();
         for (c, a0) in [
@@ -612,16 +618,7 @@ mod tests {
             let a = -std::f64::consts::FRAC_PI_2 - std::f64::consts::PI * k as f64 / 16.0;
             corners.push(Point::new(10.0 + 4.5 * a.cos(), 20.0 + 4.5 * a.sin()));
         }
-        // Vertices every half pixel or closer, as evolved outlines have.
-        let mut ring = Vec::new();
-        for (k, &p) in corners.iter().enumerate() {
-            let q = corners[(k + 1) % corners.len()];
-            let steps = (p.dist(q) / 0.5).ceil().max(1.0) as usize;
-            ring.extend((0..steps).map(|s| p + (q - p) * (s as f64 / steps as f64)));
-        }
-        if signed_area(&ring) < 0.0 {
-            ring.reverse();
-        }
+        let ring = densified(&corners);
         assert!(neck_cut(&ring, &flat()).is_none());
         // The cell at 1, the background and a line across the neck (x 26–27) at 0.
         let lined = Field::new(
@@ -753,6 +750,21 @@ mod tests {
         let mut ring = keep(a, true);
         ring.extend(keep(b, false));
         if crate::geometry::signed_area(&ring) < 0.0 {
+            ring.reverse();
+        }
+        ring
+    }
+
+    /// The ring through `corners` with vertices every half pixel or closer, as evolved
+    /// outlines have, region on the left.
+    pub(crate) fn densified(corners: &[Point]) -> Vec<Point> {
+        let mut ring = Vec::new();
+        for (k, &p) in corners.iter().enumerate() {
+            let q = corners[(k + 1) % corners.len()];
+            let steps = (p.dist(q) / 0.5).ceil().max(1.0) as usize;
+            ring.extend((0..steps).map(|s| p + (q - p) * (s as f64 / steps as f64)));
+        }
+        if signed_area(&ring) < 0.0 {
             ring.reverse();
         }
         ring

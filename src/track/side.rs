@@ -22,11 +22,8 @@
 //! movies, 21 parted cells of different mothers that one outline had come to cover, so
 //! the larger piece goes on as the outline's track and the other starts one of its own.
 
-use super::neck::{elongation, septum, MIN_LOBE_ASPECT};
-use crate::geometry::{
-    point_segment_distance, segment_intersection, signed_area, winding_number, Point,
-    SegmentIntersection,
-};
+use super::neck::{elongation, lobes, septum, MIN_LOBE_ASPECT};
+use crate::geometry::{point_segment_distance, signed_area, Point};
 use crate::image::Field;
 
 /// An outline is cut only when its width (the band width of its second moments) is at
@@ -111,24 +108,7 @@ pub fn side_cut(ring: &[Point], rod_width: f64, image: &Field) -> Option<(Vec<Po
     if depth[i].min(depth[j]) < SIDE_NOTCH * rod_width {
         return None;
     }
-    let (i, j) = (i.min(j), i.max(j));
-    if winding_number(ring, (ring[i] + ring[j]) * 0.5) == 0 {
-        return None;
-    }
-    let crosses = (0..n).any(|k| {
-        let l = (k + 1) % n;
-        ![i, j].contains(&k)
-            && ![i, j].contains(&l)
-            && !matches!(
-                segment_intersection(ring[i], ring[j], ring[k], ring[l]),
-                SegmentIntersection::None
-            )
-    });
-    if crosses {
-        return None;
-    }
-    let a: Vec<Point> = ring[i..=j].to_vec();
-    let b: Vec<Point> = ring[j..].iter().chain(&ring[..=i]).copied().collect();
+    let (a, b) = lobes(ring, i.min(j), i.max(j))?;
     let one_rod = |p: &[Point]| {
         let (aspect, width, _) = elongation(p);
         signed_area(p) > 0.0 && aspect >= MIN_LOBE_ASPECT && width <= SIDE_PART_WIDE * rod_width
@@ -140,35 +120,13 @@ pub fn side_cut(ring: &[Point], rod_width: f64, image: &Field) -> Option<(Vec<Po
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::winding_number;
+    use crate::track::neck::tests::densified;
 
     /// A capsule from `c0` to `c1` of radius `r`, region on the left, points at most half
     /// a pixel apart.
     fn rod(c0: Point, c1: Point, r: f64) -> Vec<Point> {
-        let ang = (c1.y - c0.y).atan2(c1.x - c0.x);
-        let mut pts = Vec::new();
-        for (c, a0) in [
-            (c1, ang - std::f64::consts::FRAC_PI_2),
-            (c0, ang + std::f64::consts::FRAC_PI_2),
-        ] {
-            for k in 0..=16 {
-                let a = a0 + std::f64::consts::PI * k as f64 / 16.0;
-                pts.push(Point::new(c.x + r * a.cos(), c.y + r * a.sin()));
-            }
-        }
-        densified(pts)
-    }
-
-    fn densified(corners: Vec<Point>) -> Vec<Point> {
-        let mut ring = Vec::new();
-        for (k, &p) in corners.iter().enumerate() {
-            let q = corners[(k + 1) % corners.len()];
-            let steps = (p.dist(q) / 0.5).ceil().max(1.0) as usize;
-            ring.extend((0..steps).map(|s| p + (q - p) * (s as f64 / steps as f64)));
-        }
-        if signed_area(&ring) < 0.0 {
-            ring.reverse();
-        }
-        ring
+        densified(&crate::track::neck::tests::rod(c0, c1, r))
     }
 
     /// The outline of two rods along x, radius 4.5, one above the other and touching
@@ -192,7 +150,8 @@ mod tests {
             .collect();
         let ring = crate::image::outline::basin_outline(&labels, 1, 80 * w + 80, w, h)
             .expect("one outline");
-        densified(ring.into_iter().map(|p| p * 0.25).collect())
+        let ring: Vec<Point> = ring.into_iter().map(|p| p * 0.25).collect();
+        densified(&ring)
     }
 
     #[test]
