@@ -76,19 +76,56 @@ fn opening_over_work_not_saved_says_that_work_waits_in_undo() {
     assert_no_error(&h);
     assert_eq!(h.state().doc.shapes.len(), 1, "the session's one seed");
     let name = path.file_name().unwrap().to_string_lossy().into_owned();
-    assert_eq!(
-        work(&h),
-        format!("Your work before you opened {name} is not saved (Undo brings it back).")
-    );
-    // Nothing unsaved: an opened file asks nothing.
+    let replaced =
+        format!("Your work before you opened {name} is not saved (Undo brings it back).");
+    assert_eq!(work(&h), replaced);
+    // A seed on the opened session, then Undo: the work before it is still only in Undo.
+    seed_at(&mut h, 20.0);
+    h.state_mut().send(Command::Undo);
+    h.step();
+    assert!(work(&h).ends_with(&replaced), "{}", work(&h));
+    // A file that does not open changes nothing.
+    h.state_mut()
+        .send(Command::OpenImage("/nonexistent/x.png".into()));
+    h.step();
+    assert!(h.state().status.error.is_some());
+    assert_eq!(h.state().doc.shapes.len(), 1);
+    assert!(work(&h).ends_with(&replaced), "{}", work(&h));
+    // Nothing unsaved: an opened file asks nothing, nor does a failed open.
     let mut h = harness(bright_bridge_with_seeds(&[]));
     h.step();
-    h.state_mut().send(Command::OpenSession(path));
+    h.state_mut().send(Command::OpenSession(path.clone()));
     h.step();
-    assert!(
-        close_window(&mut h),
-        "a session opened over nothing: not asked"
-    );
+    h.state_mut()
+        .send(Command::OpenImage("/nonexistent/x.png".into()));
+    h.step();
+    assert!(close_window(&mut h), "nothing to lose: not asked");
+    // A session whose image changed on disk opens its image, then fails: the document
+    // before it stays on screen, seeds and all.
+    let image = temp("changing.png");
+    std::fs::copy(case_image("bridge_merge"), &image).unwrap();
+    let mut h = harness(TopoApp::default());
+    h.state_mut().send(Command::OpenImage(image.clone()));
+    h.step();
+    seed_at(&mut h, 40.0);
+    let session = save_session(&mut h, "changing.json");
+    seed_at(&mut h, 60.0);
+    std::fs::copy(case_image("blobs_wrap"), &image).unwrap();
+    h.state_mut().send(Command::OpenSession(session));
+    h.step();
+    assert!(h.state().status.error.is_some(), "the image changed");
+    assert_eq!(h.state().doc.shapes.len(), 2);
+    assert!(work(&h).contains("not saved as a session"), "{}", work(&h));
+}
+
+/// Adds a seed disk at (`x`, 40).
+fn seed_at(h: &mut egui_kittest::Harness<'_, TopoApp>, x: f64) {
+    h.state_mut()
+        .send(Command::AddShape(topocontour::evolution::Shape::Disk {
+            center: topocontour::Point::new(x, 40.0),
+            radius: 5.0,
+        }));
+    h.step();
 }
 
 #[test]

@@ -11,52 +11,55 @@ use crate::geometry::Point;
 impl TopoApp {
     /// Applies one command.
     pub(super) fn apply_now(&mut self, c: Command) {
-        let opened = match &c {
+        match &c {
             Command::OpenImage(p) | Command::OpenSession(p) | Command::OpenMovie(p) => {
-                Some(p.file_name().map_or_else(
+                let name = p.file_name().map_or_else(
                     || p.display().to_string(),
                     |n| n.to_string_lossy().into_owned(),
-                ))
+                );
+                self.open_file(c, name);
             }
-            _ => None,
-        };
-        if opened.is_some() {
-            // An earlier error goes (a success clears it anyway), so one now is this one's.
-            let before = self.unsaved_work();
-            self.status.error = None;
-            self.apply_to_document(c);
-            if self.status.error.is_none() {
-                // The document is the file opened: nothing of it to save. Work before it
-                // stays in Undo, and closing says so.
-                self.unsaved = false;
-                if before.is_some() {
-                    self.replaced = opened;
+            _ => {
+                if self.history.starts_step(&c) {
+                    self.history.push(self.doc.clone());
+                    self.unsaved = true;
                 }
+                self.unsaved |= matches!(
+                    c,
+                    Command::Undo
+                        | Command::Redo
+                        | Command::Track
+                        | Command::TrackConfirmed
+                        | Command::ContinueTrack
+                        | Command::Retrack(_)
+                );
+                self.dispatch(c);
             }
-            return;
         }
-        if matches!(c, Command::Undo | Command::Redo) {
-            // The document on screen is the one the question then describes.
-            self.replaced = None;
-        }
-        self.apply_to_document(c);
     }
 
-    /// Applies one command to the document: an undo step first when it starts one.
-    fn apply_to_document(&mut self, c: Command) {
-        if self.history.starts_step(&c) {
-            self.history.push(self.doc.clone());
-            self.unsaved = true;
+    /// Opens a file (`c`, named `name`): an undo step when it opened, nothing changed when
+    /// it did not (a session whose image opened but whose job failed included). The file's
+    /// document has nothing to save; work not saved before it stays in Undo, and the
+    /// document says so ([`super::Document::replaced`]), carried through Undo and Redo.
+    fn open_file(&mut self, c: Command, name: String) {
+        let (before, unsaved, work) = (self.doc.clone(), self.unsaved, self.unsaved_work());
+        // An earlier error goes (a success clears it anyway), so one now is this one's.
+        self.status.error = None;
+        self.history.starts_step(&c);
+        self.dispatch(c);
+        if self.status.error.is_some() {
+            self.doc = before;
+            self.unsaved = unsaved;
+            return;
         }
-        self.unsaved |= matches!(
-            c,
-            Command::Undo
-                | Command::Redo
-                | Command::Track
-                | Command::TrackConfirmed
-                | Command::ContinueTrack
-                | Command::Retrack(_)
-        );
+        self.history.push(before);
+        self.unsaved = false;
+        self.doc.replaced = work.map(|_| name);
+    }
+
+    /// Hands one command to its group's handler.
+    fn dispatch(&mut self, c: Command) {
         match c.group() {
             Group::Hand => self.hand_edit(c),
             Group::History => self.undo_redo(c),

@@ -40,6 +40,10 @@ pub struct Document {
     pub train: super::Training,
     /// The probability map the run on screen reads (none: it reads the image).
     pub taught: Option<super::train::Key>,
+    /// The file whose opening made this document over work not saved (that work is in
+    /// Undo): closing says so, not only what this document lacks. Undo and Redo carry it
+    /// with the document.
+    pub replaced: Option<String>,
 }
 
 /// The settings of a document's run: reset for every image opened (each image has its own

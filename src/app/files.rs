@@ -191,7 +191,7 @@ impl TopoApp {
 
     /// What closing now would lose, in a sentence or two; None when nothing.
     pub fn unsaved_work(&self) -> Option<String> {
-        let replaced = self.replaced.as_ref().map(|name| {
+        let replaced = self.doc.replaced.as_ref().map(|name| {
             format!("Your work before you opened {name} is not saved (Undo brings it back).")
         });
         match (self.own_unsaved_work(), replaced) {

@@ -61,9 +61,6 @@ pub struct TopoApp {
     history: history::History,
     /// The document changed since it was last saved (a session; a movie's CTC export).
     unsaved: bool,
-    /// The file whose opening replaced work not saved (that work stays in Undo): closing
-    /// says so, not only what the opened file's document lacks.
-    replaced: Option<String>,
 }
 
 /// Work running in the background.

@@ -16,7 +16,7 @@
 //! a mother's waist as narrow is not, a full-width contact needs a full line and sharp
 //! corners (rods side by side that turned apart). A neck of [`SMOOTH_NECK`] widths or
 //! more that bends less than [`SMOOTH_TURN`] is a mother's last waist and is not cut
-//! unless a clear line runs along it. A neck wider than [`WIDE_NECK`] of
+//! unless a clear line runs along it (on rods at least [`SMOOTH_MIN_WIDTH`] wide). A neck wider than [`WIDE_NECK`] of
 //! the width needs a line whatever its corners: in a crowded colony neighbours press
 //! notches into a rod's outline. A straight or bent single rod, a kidney and an ellipse
 //! have no such neck and no line along it.
@@ -99,11 +99,13 @@ pub const SMOOTH_TURN: f64 = 1.0;
 /// 0.46.
 pub const SMOOTH_LINE: f64 = 0.5;
 
-/// The bound on a gentle neck ([`SMOOTH_NECK`]) holds only for rods at least this wide
-/// (pixels, the lobes' band width): the turn is measured over an arc of a quarter width,
-/// which on thinner rods spans little more than a pixel, so two caps meeting turn as
-/// little as a waist (rods 6–7.5 px wide: a quarter of their cuts at birth turned under
-/// 1 rad, against 2% on rods 8–10 px wide).
+/// The bound on a gentle neck ([`SMOOTH_NECK`]) holds only where the lobes are at least
+/// this wide (pixels, their band width on the evolved outline, which comes out narrower
+/// than the rod as drawn: synthetic rods drawn 6–7.5 px wide measured 4.8–6.2 at their
+/// cuts, median 5.4; rods drawn 8–10 px, 6.0–8.0, median 6.9). The turn is measured over
+/// an arc of a quarter width, which on thinner rods spans little more than a pixel, so
+/// two caps meeting turn as little as a waist (at necks of 0.4 widths or more, 28% of
+/// the thin rods' cuts at birth turned under 1 rad, against 2% on the wider ones).
 pub const SMOOTH_MIN_WIDTH: f64 = 5.5;
 
 /// Each lobe at least this elongated (major over minor axis of its second moments): a
@@ -149,6 +151,14 @@ pub const ROUND_SHARE: f64 = 0.8;
 
 /// How far (pixels) a neck's ends must be from the frame's edge.
 pub const EDGE_MARGIN: f64 = 3.0;
+
+/// Whether `p` is at least [`EDGE_MARGIN`] from the edge of `image`: a cell cut off by
+/// the frame's edge is not measured across it (its outline runs along the edge, and the
+/// band outside is not in the image).
+pub(crate) fn off_edge(p: Point, image: &Field) -> bool {
+    let (w, h) = (image.width as f64, image.height as f64);
+    p.x.min(p.y).min(w - p.x).min(h - p.y) >= EDGE_MARGIN
+}
 
 /// The most pieces one outline is cut into in one frame.
 pub const MAX_PIECES: usize = 16;
@@ -336,11 +346,7 @@ pub fn neck_cut_along(
     }
     let (_, i, j) = best?;
     let d = ring[i].dist(ring[j]);
-    // A cell cut off by the frame's edge is not measured across it (its outline runs
-    // along the edge, and the band outside is not in the image).
-    let (w, h) = (image.width as f64, image.height as f64);
-    let off_edge = |p: Point| p.x.min(p.y).min(w - p.x).min(h - p.y) >= EDGE_MARGIN;
-    if !off_edge(ring[i]) || !off_edge(ring[j]) {
+    if !off_edge(ring[i], image) || !off_edge(ring[j], image) {
         return None;
     }
     let (a, b) = lobes(ring, i, j)?;

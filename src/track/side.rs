@@ -5,9 +5,9 @@
 //! between them is faint (a colony's first frame), and sisters that slid alongside each
 //! other before their neck was cut stay one outline too; a carried outline is never
 //! divided again by the partition of touching cells ([`super::partition`]), which only
-//! redraws the line between cells already apart, so the pair went on as one track for
-//! the rest of the movie (a synthetic colony, seed 53: 71 frames of cells covered two at
-//! a time, docs/decisions.md, 2026-12-06).
+//! redraws the line between cells already apart, so the pair went on under one outline,
+//! passed on through the movie (a synthetic colony, seed 53: 71 objects covered two
+//! cells each; docs/decisions.md, 2026-12-06).
 //!
 //! The cut follows the concave points of Bai, Sun & Zhou (2009), as the seeds' declumping
 //! does for nuclei ([`crate::image::declump`]): where two convex cells meet, the outline
@@ -22,7 +22,7 @@
 //! movies, 21 parted cells of different mothers that one outline had come to cover, so
 //! the larger piece goes on as the outline's track and the other starts one of its own.
 
-use super::neck::{elongation, lobes, septum, MIN_LOBE_ASPECT};
+use super::neck::{elongation, lobes, off_edge, septum, MIN_LOBE_ASPECT};
 use crate::geometry::{point_segment_distance, signed_area, Point};
 use crate::image::Field;
 
@@ -40,10 +40,11 @@ pub const SIDE_NOTCH: f64 = 0.25;
 /// off a clump.
 pub const SIDE_PART_WIDE: f64 = 1.3;
 
-/// The image along the contact must be brighter than the two cells' cores (a septum
-/// share above this, [`super::neck`]): two cells side by side show at least a faint seam
-/// between them, a single cell's outline with two dips (a rod bent by its neighbours)
-/// shows its own inside. On 24 side cuts of synthetic movies, the two that cut one cell
+/// The image along the contact must be more background-like than the two cells' cores
+/// (a septum share above this, [`super::neck`]; brighter in phase contrast, darker in
+/// fluorescence): two cells side by side show at least a faint seam between them, a
+/// single cell's outline with two dips (a rod bent by its neighbours) shows its own
+/// inside. On 24 side cuts of synthetic movies, the two that cut one cell
 /// had −0.05 and −0.04; 19 of the 22 that parted two cells had more than 0.
 pub const SIDE_LINE: f64 = 0.0;
 
@@ -106,6 +107,9 @@ pub fn side_cut(ring: &[Point], rod_width: f64, image: &Field) -> Option<(Vec<Po
     };
     let j = deepest(&apart)?;
     if depth[i].min(depth[j]) < SIDE_NOTCH * rod_width {
+        return None;
+    }
+    if !off_edge(ring[i], image) || !off_edge(ring[j], image) {
         return None;
     }
     let (a, b) = lobes(ring, i.min(j), i.max(j))?;
