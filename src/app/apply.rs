@@ -43,7 +43,8 @@ impl TopoApp {
     /// document has nothing to save; work not saved before it stays in Undo, and the
     /// document says so ([`super::Document::replaced`]), carried through Undo and Redo.
     fn open_file(&mut self, c: Command, name: String) {
-        let (before, unsaved, work) = (self.doc.clone(), self.unsaved, self.unsaved_work());
+        let (before, unsaved) = (self.doc.clone(), self.unsaved);
+        let had_work = self.unsaved_work().is_some();
         // An earlier error goes (a success clears it anyway), so one now is this one's.
         self.status.error = None;
         self.history.starts_step(&c);
@@ -55,7 +56,7 @@ impl TopoApp {
         }
         self.history.push(before);
         self.unsaved = false;
-        self.doc.replaced = work.map(|_| name);
+        self.doc.replaced = had_work.then_some(name);
     }
 
     /// Hands one command to its group's handler.
