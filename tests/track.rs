@@ -541,7 +541,7 @@ fn a_nucleus_that_parts_for_one_frame_did_not_divide() {
     assert_eq!(seen[3].divisions.len(), 1);
     assert_eq!(seen[4].undone, seen[3].divisions);
     let mut revised = seen[3].clone();
-    revised.take_back(&seen[4].undone);
+    revised.revise(&seen[4]);
     assert!(revised.divisions.is_empty());
     assert_eq!(
         revised.objects.iter().map(|o| o.track).collect::<Vec<_>>(),

@@ -15,7 +15,7 @@ use topocontour::evolution::Field;
 use topocontour::io::export::ctc;
 use topocontour::io::field_from_samples;
 use topocontour::io::movie::{normalise, Movie, MovieError};
-use topocontour::track::{take_back_labels, Lineage, TrackedFrame};
+use topocontour::track::{revise_labels, Lineage, TrackedFrame};
 
 /// `topocontour track`'s flags, parsed as the command line parses them.
 #[derive(Parser)]
@@ -121,11 +121,11 @@ fn run(
     let size = w * h;
     for image in frames {
         let frame = tracker.step(&image?).map_err(bad)?;
-        // This frame may take back the divisions of the one before.
+        // This frame may revise the one before (a division taken back or dated there).
         if let Some(before) = kept.last_mut() {
-            before.take_back(&frame.undone);
+            before.revise(&frame);
             let at = labels.len() - size;
-            take_back_labels(&mut labels[at..], &frame.undone);
+            revise_labels(&mut labels[at..], w, &frame);
         }
         labels.extend_from_slice(tracker.labels());
         kept.push(frame);

@@ -289,6 +289,7 @@ pub fn corrected(
         objects: Vec::new(),
         divisions: Vec::new(),
         undone: Vec::new(),
+        earlier: Vec::new(),
         evolution_frames: old.evolution_frames,
     };
     let mut label_of = vec![0u32; cells.len()];

@@ -476,10 +476,14 @@ impl TopoApp {
                     self.view.frames.put(t, image.clone());
                     if let Some(tr) = tracking_with(&mut self.doc, job.tracking) {
                         tr.frames.truncate(t);
-                        // This frame may take back the divisions of the one before.
-                        if let Some(before) = tr.frames.last_mut().filter(|_| !f.undone.is_empty())
+                        // This frame may revise the one before (a division taken back or
+                        // dated there).
+                        if let Some(before) = tr
+                            .frames
+                            .last_mut()
+                            .filter(|_| !(f.undone.is_empty() && f.earlier.is_empty()))
                         {
-                            Arc::make_mut(before).take_back(&f.undone);
+                            Arc::make_mut(before).revise(&f);
                         }
                         tr.frames.push(f);
                         tr.lineage = lineage;

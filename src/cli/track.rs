@@ -15,7 +15,7 @@ use crate::evolution::{Modality, Polarity};
 use crate::io::export::ctc;
 use crate::io::movie::Movie;
 use crate::io::{write_atomic, OutputFiles};
-use crate::track::{take_back_labels, Lineage, TrackSettings, TrackedFrame, Tracker};
+use crate::track::{revise_labels, Lineage, TrackSettings, TrackedFrame, Tracker};
 use clap::Args;
 use std::path::{Path, PathBuf};
 
@@ -167,9 +167,9 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
     let plan = prepare(a)?;
     let mut kept: Vec<TrackedFrame> = Vec::new();
     let mut csv = String::from(ctc::CSV_HEADER);
-    // A frame is written once the next is tracked, which may take back its divisions
-    // (sisters one cell again: [`TrackedFrame::undone`]): two frames are held, not the
-    // movie.
+    // A frame is written once the next is tracked, which may revise it (sisters one cell
+    // again, [`TrackedFrame::undone`]; a division dated there, [`TrackedFrame::earlier`]):
+    // two frames are held, not the movie.
     let mut held: Option<Held> = None;
     let mut out = Out {
         a,
@@ -190,10 +190,10 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
         let image = image.map_err(|e| bad(e.to_string()))?;
         let frame = tracker.step(&image).map_err(|e| bad(e.to_string()))?;
         if let Some(mut before) = held.take() {
-            before.frame.take_back(&frame.undone);
-            take_back_labels(&mut before.labels, &frame.undone);
+            before.frame.revise(&frame);
+            revise_labels(&mut before.labels, w, &frame);
             if let Some(last) = kept.last_mut() {
-                last.take_back(&frame.undone);
+                last.revise(&frame);
             }
             out.write(&before, tracker.lineage())?;
         }

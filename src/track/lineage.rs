@@ -75,6 +75,18 @@ impl Lineage {
         self.extend(division.parent, frame);
     }
 
+    /// Dates `division` at its frame, a frame earlier than it was found: its parent's
+    /// last frame is the one before, its children start there.
+    pub fn redate(&mut self, division: &Division) {
+        for t in self.tracks.iter_mut() {
+            if t.label == division.parent {
+                t.last = division.frame.saturating_sub(1);
+            } else if division.children.contains(&t.label) {
+                t.first = division.frame;
+            }
+        }
+    }
+
     /// The tracks that began before `frame`, as they were up to `frame − 1`; labels given
     /// later follow the largest kept.
     pub fn before(&self, frame: usize) -> Lineage {

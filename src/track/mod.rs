@@ -75,6 +75,8 @@ use carry::{
     claim, drop_shreds, free_object, label_raster, labels_of, majority, ordered, regroup,
     ring_origins, settled, shrunk, uncovered, Origin,
 };
+use neck::Neck;
+use std::collections::HashMap;
 use std::sync::Arc;
 
 /// Smallest area of a split's smaller piece, as a share of the larger, for the split to
@@ -88,6 +90,22 @@ pub const MIN_DAUGHTER_SHARE: f64 = 0.2;
 /// [`MIN_DAUGHTER_SHARE`]; it is a seed of its own, found where the mother was, not a
 /// shred of her contour.
 pub const MIN_CLAIMED_SHARE: f64 = 0.05;
+
+/// A division cut at a neck ([`neck`]) is dated a frame earlier when the parent's neck
+/// the frame before, left uncut, turned inward at its ends by at least this much
+/// (radians, both ends together, plus [`EARLIER_LINE`] × its septum share): two caps
+/// just meeting, not a waist. On synthetic phase-contrast bacteria, necks a frame
+/// before a cut made at the birth turned 0.34–0.81 (10th–90th percentile), those at a
+/// birth the cut came a frame after 0.70–1.10 (docs/decisions.md, 2026-12-06).
+pub const EARLIER_TURN: f64 = 0.8;
+
+/// The weight of the septum share beside the turn ([`EARLIER_TURN`]).
+pub const EARLIER_LINE: f64 = 0.5;
+
+/// ... and only when the neck had stopped narrowing: at most this much narrower (rod
+/// widths) than the frame before. A mother's waist narrows by 0.09–0.23 widths a frame
+/// to its last; sisters' contact hardly changes at birth.
+pub const EARLIER_NARROWING: f64 = 0.05;
 
 /// A frame after the first evolves through the coarse pyramid levels only when the
 /// median half-width (2A/P) of the last frame's cells is at least this many pixels (2.35
@@ -161,18 +179,32 @@ pub struct TrackedFrame {
     /// Divisions whose children start in this frame.
     pub divisions: Vec<Division>,
     /// Divisions of the frame before that this frame took back: sisters that came
-    /// apart there and are one cell again here (see [`TrackedFrame::take_back`]).
+    /// apart there and are one cell again here (see [`TrackedFrame::revise`]).
     pub undone: Vec<Division>,
+    /// Divisions this frame dated a frame earlier ([`Tracker::date`]): the frame before
+    /// is revised to show the children.
+    #[serde(default)]
+    pub earlier: Vec<Earlier>,
     /// Frames the evolution ran.
     pub evolution_frames: usize,
 }
 
+/// A division the next frame dated into this one ([`TrackedFrame::earlier`]).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Earlier {
+    /// The division, its children starting in the frame revised.
+    pub division: Division,
+    /// The children's cells in that frame (the lobes of the parent's cell).
+    pub cells: [TrackedObject; 2],
+}
+
 impl TrackedFrame {
-    /// This frame as the next one revised it (its [`TrackedFrame::undone`]): the
-    /// divisions taken back are gone, and their children's cells are their parent's,
-    /// one cell seen in two pieces.
-    pub fn take_back(&mut self, undone: &[Division]) {
-        for d in undone {
+    /// This frame as `next` revised it: the divisions it took back
+    /// ([`TrackedFrame::undone`]) are gone, their children's cells their parent's, one
+    /// cell seen in two pieces; the divisions it dated here ([`TrackedFrame::earlier`])
+    /// replace their parent's cell by the children's.
+    pub fn revise(&mut self, next: &TrackedFrame) {
+        for d in &next.undone {
             self.divisions.retain(|x| x != d);
             for o in self.objects.iter_mut() {
                 if d.children.contains(&o.track) {
@@ -180,18 +212,51 @@ impl TrackedFrame {
                 }
             }
         }
+        for e in &next.earlier {
+            self.objects.retain(|o| o.track != e.division.parent);
+            self.objects.extend(e.cells.iter().cloned());
+            self.divisions.push(e.division);
+        }
         self.objects.sort_by_key(|o| o.track);
     }
 }
 
-/// A frame's label raster as the next frame revised it (its [`TrackedFrame::undone`]):
-/// the children of the divisions taken back are their parent.
-pub fn take_back_labels(labels: &mut [u32], undone: &[Division]) {
-    for d in undone {
+/// A frame's label raster (`width` pixels a row) as `next` revised it
+/// ([`TrackedFrame::revise`]).
+pub fn revise_labels(labels: &mut [u32], width: usize, next: &TrackedFrame) {
+    for d in &next.undone {
         for l in labels.iter_mut() {
             if d.children.contains(l) {
                 *l = d.parent;
             }
+        }
+    }
+    if next.earlier.is_empty() || width == 0 {
+        return;
+    }
+    let height = labels.len() / width;
+    for e in &next.earlier {
+        let rings: Vec<(u32, &[Point])> = e
+            .cells
+            .iter()
+            .map(|c| (c.track, c.ring.as_slice()))
+            .collect();
+        let lobes = label_raster(&rings, width, height);
+        let parent = e.division.parent;
+        for (k, l) in labels.iter_mut().enumerate().filter(|(_, l)| **l == parent) {
+            *l = match lobes[k] {
+                0 => {
+                    // On the chord between the lobes: the nearer child's.
+                    let p = Point::new((k % width) as f64 + 0.5, (k / width) as f64 + 0.5);
+                    let [a, b] = &e.cells;
+                    if p.dist(a.centroid) <= p.dist(b.centroid) {
+                        a.track
+                    } else {
+                        b.track
+                    }
+                }
+                c => c,
+            };
         }
     }
 }
@@ -223,6 +288,9 @@ pub struct Tracker {
     /// The last frame's divisions whose daughters were born apart ([`partition::meet`]):
     /// taken back when the two are one cell again in this frame ([`partition::rejoined`]).
     apart: Vec<Division>,
+    /// The necks of the last frame's cells that were not cut, by track, each with the
+    /// neck's width ([`Neck::narrow`]) the frame before ([`Tracker::date`]).
+    necks: HashMap<u32, (Neck, Option<f64>)>,
 }
 
 impl Tracker {
@@ -239,6 +307,7 @@ impl Tracker {
             residual: 0,
             previous: None,
             apart: Vec::new(),
+            necks: HashMap::new(),
         }
     }
 
@@ -312,6 +381,7 @@ impl Tracker {
             objects: Vec::new(),
             divisions: Vec::new(),
             undone: Vec::new(),
+            earlier: Vec::new(),
             evolution_frames,
         };
         let joined = match (model.as_deref(), automatic) {
@@ -327,7 +397,12 @@ impl Tracker {
         );
         // Cells found alongside another under one outline ([`side`]): tracks of their own.
         let mut alongside: Vec<TrackedObject> = Vec::new();
+        // The necks measured in this frame, and the tracks whose one outline was cut at a
+        // neck into two ([`Tracker::date`]).
+        let mut necks: HashMap<u32, (Neck, Option<f64>)> = HashMap::new();
+        let mut neck_cut: Vec<u32> = Vec::new();
         for (owner, group) in groups {
+            let single = group.len() == 1;
             // Sisters touching end to end never pinch apart in the image: cut at necks.
             let mut cut: Vec<TrackedObject> = Vec::with_capacity(group.len());
             for o in group {
@@ -336,18 +411,30 @@ impl Tracker {
                     cut.push(o);
                     continue;
                 }
-                if let Some(rings) = neck::cut_at_necks(&o.ring, image, None) {
-                    cut.extend(rings.into_iter().map(object));
-                } else if let Some((a, b)) = rods.and_then(|w| side::side_cut(&o.ring, w, image)) {
+                let neck = match neck::cut_or_measure(&o.ring, image) {
+                    Ok(rings) => {
+                        if let (Some(track), true, 2) = (owner, single, rings.len()) {
+                            neck_cut.push(track);
+                        }
+                        cut.extend(rings.into_iter().map(object));
+                        continue;
+                    }
+                    Err(neck) => neck,
+                };
+                if let Some((a, b)) = rods.and_then(|w| side::side_cut(&o.ring, w, image)) {
                     // Rods side by side have no neck: two cells read as one, the larger
                     // going on as the outline's cell ([`side`]).
                     let (a, b) = (object(a), object(b));
                     let (keep, other) = if a.area >= b.area { (a, b) } else { (b, a) };
                     cut.push(keep);
                     alongside.push(other);
-                } else {
-                    cut.push(o);
+                    continue;
                 }
+                if let (Some(track), Some(neck), true) = (owner, neck, single) {
+                    let before = self.necks.get(&track).map(|(k, _)| k.narrow);
+                    necks.insert(track, (neck, before));
+                }
+                cut.push(o);
             }
             cut.sort_by(|x, y| y.area.total_cmp(&x.area));
             self.settle(owner, cut, &mut frame);
@@ -370,6 +457,8 @@ impl Tracker {
                 self.labels = raster(&frame.objects);
             }
         }
+        self.date(&mut frame, &neck_cut);
+        self.necks = necks;
         self.apart = frame
             .divisions
             .iter()
@@ -592,12 +681,71 @@ impl Tracker {
             .is_some_and(|k| k.parent == 0 && k.first > 0 && k.first + 1 == t)
     }
 
+    /// Dates the divisions of `frame` cut at a neck (the parents `cut`) a frame earlier
+    /// when the parent's outline in the frame before was already two cells: its neck,
+    /// left uncut there, bent at its ends or showed a line ([`EARLIER_TURN`]) and had
+    /// stopped narrowing ([`EARLIER_NARROWING`]). One frame's outline cannot tell a
+    /// mother's last waist from two caps just meeting (their necks are equally wide);
+    /// the cut that follows says a division came, and the frames around it say which
+    /// frame it came in. The frame before is revised by [`TrackedFrame::revise`]: the
+    /// parent's cell there becomes the two lobes of its neck, each the child it is
+    /// nearer to. A parent seen for one frame only keeps its division where it is.
+    fn date(&mut self, frame: &mut TrackedFrame, cut: &[u32]) {
+        let t = frame.frame;
+        for d in frame.divisions.clone() {
+            if !cut.contains(&d.parent) {
+                continue;
+            }
+            let Some((neck, before)) = self.necks.get(&d.parent) else {
+                continue;
+            };
+            let two = neck.rods()
+                && neck.turn + EARLIER_LINE * neck.line >= EARLIER_TURN
+                && before.is_none_or(|n| n - neck.narrow <= EARLIER_NARROWING);
+            let seen = self.lineage.get(d.parent).is_some_and(|p| p.first + 2 <= t);
+            if !(two && seen) {
+                continue;
+            }
+            let child = |l: u32| frame.objects.iter().find(|o| o.track == l);
+            let (Some(c0), Some(c1)) = (child(d.children[0]), child(d.children[1])) else {
+                continue;
+            };
+            let (a, b) = (object(neck.lobes.0.clone()), object(neck.lobes.1.clone()));
+            let far = |x: &TrackedObject, c: &TrackedObject| x.centroid.dist(c.centroid);
+            let (a, b) = if far(&a, c0) + far(&b, c1) <= far(&a, c1) + far(&b, c0) {
+                (a, b)
+            } else {
+                (b, a)
+            };
+            // The lobes are the children a frame younger: each near its own.
+            if far(&a, c0).max(far(&b, c1)) > neck.width {
+                continue;
+            }
+            let earlier = Division { frame: t - 1, ..d };
+            self.lineage.redate(&earlier);
+            frame.divisions.retain(|x| *x != d);
+            frame.earlier.push(Earlier {
+                division: earlier,
+                cells: [
+                    TrackedObject {
+                        track: d.children[0],
+                        ..a
+                    },
+                    TrackedObject {
+                        track: d.children[1],
+                        ..b
+                    },
+                ],
+            });
+        }
+    }
+
     /// Takes back the last frame's divisions whose daughters came apart there and are
     /// one cell again in `frame` ([`partition::rejoined`]): a nucleus that parts for a
     /// frame, its two lobes a gap apart, and closes again the next was never two cells
     /// (sim_plus_01, frame 38: `docs/decisions.md`, 2026-12-05). The parent goes on as
     /// the union of the two; the frame before is revised by
-    /// [`TrackedFrame::take_back`]. Whether any was.
+    /// [`TrackedFrame::revise`]. Whether any was.
     fn rejoin(&mut self, frame: &mut TrackedFrame, model: &ImageModel) -> bool {
         let mut any = false;
         for d in std::mem::take(&mut self.apart) {
@@ -710,6 +858,111 @@ mod tests {
             ring.push(Point::new(x0 + r * a.cos(), 20.0 + r * a.sin()));
         }
         ring
+    }
+
+    /// A tracker whose track 1 was seen on frames `first..=1` and divided at frame 2 into
+    /// 2 (on the right) and 3 (on the left), its outline on frame 1 having measured
+    /// `neck` after one `before` wide; and that frame 2.
+    fn divided(first: usize, neck: Neck, before: Option<f64>) -> (Tracker, TrackedFrame) {
+        let mut t = Tracker::new(TrackSettings::new(Params::default()), Vec::new());
+        let parent = t.lineage.start(first, 0);
+        t.lineage.extend(parent, 1);
+        let children = [t.lineage.start(2, parent), t.lineage.start(2, parent)];
+        t.necks.insert(parent, (neck, before));
+        let frame = TrackedFrame {
+            frame: 2,
+            objects: vec![
+                TrackedObject {
+                    track: children[0],
+                    ..object(rod(26.5, 38.5, 8.0))
+                },
+                TrackedObject {
+                    track: children[1],
+                    ..object(rod(9.5, 21.5, 8.0))
+                },
+            ],
+            divisions: vec![Division {
+                frame: 2,
+                parent,
+                children,
+            }],
+            undone: Vec::new(),
+            earlier: Vec::new(),
+            evolution_frames: 1,
+        };
+        (t, frame)
+    }
+
+    /// A neck of two rods meeting end to end at x = 24, as measured.
+    fn caps(turn: f64, line: f64) -> Neck {
+        Neck {
+            narrow: 0.6,
+            width: 8.0,
+            line,
+            turn,
+            aspect: 2.0,
+            share: 1.0,
+            lobes: (rod(10.0, 20.0, 8.0), rod(28.0, 38.0, 8.0)),
+        }
+    }
+
+    #[test]
+    fn a_division_is_dated_where_the_neck_first_showed_two_cells() {
+        let (mut t, mut frame) = divided(0, caps(0.9, 0.1), Some(0.62));
+        t.date(&mut frame, &[1]);
+        assert!(frame.divisions.is_empty());
+        let e = &frame.earlier[0];
+        assert_eq!(e.division, Division { frame: 1, parent: 1, children: [2, 3] });
+        // Each lobe goes to the child it is nearer to.
+        assert_eq!(e.cells[0].track, 2);
+        assert!(e.cells[0].centroid.x > 30.0 && e.cells[1].centroid.x < 18.0);
+        let l = |k| *t.lineage.get(k).unwrap();
+        assert_eq!((l(1).first, l(1).last), (0, 0));
+        assert_eq!((l(2).first, l(3).first), (1, 1));
+
+        // The frame before, revised: the parent's cell is the two children's.
+        let whole = object(rod(10.0, 38.0, 8.0));
+        let mut before = TrackedFrame {
+            frame: 1,
+            objects: vec![TrackedObject { track: 1, ..whole.clone() }],
+            divisions: Vec::new(),
+            undone: Vec::new(),
+            earlier: Vec::new(),
+            evolution_frames: 1,
+        };
+        let (w, h) = (48, 40);
+        let mut labels = label_raster(&[(1, whole.ring.as_slice())], w, h);
+        before.revise(&frame);
+        revise_labels(&mut labels, w, &frame);
+        let tracks: Vec<u32> = before.objects.iter().map(|o| o.track).collect();
+        assert_eq!(tracks, [2, 3]);
+        assert_eq!(before.divisions, [e.division]);
+        assert!(!labels.contains(&1));
+        assert_eq!((labels[20 * w + 35], labels[20 * w + 13]), (2, 3));
+        assert_eq!(labels[20 * w + 45], 0);
+    }
+
+    #[test]
+    fn a_waist_still_narrowing_or_bending_gently_keeps_its_division_where_it_was_cut() {
+        for (first, neck, before) in [
+            // The waist narrowed by 0.1 widths since the frame before: a constricting mother.
+            (0, caps(0.9, 0.1), Some(0.7)),
+            // It bends gently with hardly a line.
+            (0, caps(0.6, 0.2), None),
+            // The parent was seen on one frame only: it keeps it.
+            (1, caps(1.2, 0.3), None),
+        ] {
+            let (mut t, mut frame) = divided(first, neck, before);
+            let kept = frame.clone();
+            t.date(&mut frame, &[1]);
+            assert_eq!(frame, kept);
+            assert_eq!(t.lineage.get(2).unwrap().first, 2);
+        }
+        // A division that was not a cut at a neck (the contour split by itself).
+        let (mut t, mut frame) = divided(0, caps(1.2, 0.3), None);
+        let kept = frame.clone();
+        t.date(&mut frame, &[]);
+        assert_eq!(frame, kept);
     }
 
     #[test]

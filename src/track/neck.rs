@@ -172,6 +172,30 @@ pub fn cut_at_necks(
     line: Option<&Field>,
 ) -> Option<Vec<Vec<Point>>> {
     let (a, b) = neck_cut_along(ring, image, line)?;
+    Some(cut_further(a, b, image, line))
+}
+
+/// [`cut_at_necks`] with no septum field; an outline that is not cut gives its neck as
+/// measured instead (`None` when it has none), which the tracker keeps to date a
+/// division it cuts in a later frame ([`crate::track::Tracker`]).
+pub fn cut_or_measure(ring: &[Point], image: &Field) -> Result<Vec<Vec<Point>>, Option<Neck>> {
+    match measure(ring, image) {
+        Some(k) if k.cut() => {
+            let (a, b) = k.lobes;
+            Ok(cut_further(a, b, image, None))
+        }
+        other => Err(other),
+    }
+}
+
+/// Lobes `a` and `b` of a cut outline cut again at their own necks until none is left,
+/// largest first.
+fn cut_further(
+    a: Vec<Point>,
+    b: Vec<Point>,
+    image: &Field,
+    line: Option<&Field>,
+) -> Vec<Vec<Point>> {
     let (mut done, mut todo) = (Vec::new(), vec![a, b]);
     while let Some(r) = todo.pop() {
         match (done.len() + todo.len() + 1 < MAX_PIECES)
@@ -183,7 +207,7 @@ pub fn cut_at_necks(
         }
     }
     done.sort_by(|a, b| signed_area(b).total_cmp(&signed_area(a)));
-    Some(done)
+    done
 }
 
 /// How far apart (pixels) the pieces [`cut_set_at_necks`] puts back are held: rings of
@@ -297,6 +321,58 @@ pub fn neck_cut_along(
     image: &Field,
     line: Option<&Field>,
 ) -> Option<(Vec<Point>, Vec<Point>)> {
+    let Some(f) = line else {
+        return measure(ring, image).filter(Neck::cut).map(|k| k.lobes);
+    };
+    let (i, j) = shortest_chord(ring, line)?;
+    let (a, b) = daughters(ring, i, j, image)?;
+    let (la, lb) = (elongation(&a), elongation(&b));
+    let width = la.1.min(lb.1);
+    let contrast = along(f, ring[i], ring[j]) - 0.5 * (core_mean(f, &a) + core_mean(f, &b));
+    let ok = la.0.min(lb.0) >= LINE_LOBE_ASPECT
+        && contrast >= LINE_CONTRAST
+        && ring[i].dist(ring[j]) < LINE_WIDE * width;
+    ok.then_some((a, b))
+}
+
+/// The neck of `ring` as measured ([`Neck`]), whether or not it is cut; `None` when it
+/// has no chord leaving two lobes of a daughter's share off the frame's edge.
+pub fn measure(ring: &[Point], image: &Field) -> Option<Neck> {
+    let (i, j) = shortest_chord(ring, None)?;
+    let (a, b) = daughters(ring, i, j, image)?;
+    let (la, lb) = (elongation(&a), elongation(&b));
+    let width = la.1.min(lb.1);
+    let (aa, ab) = (signed_area(&a), signed_area(&b));
+    Some(Neck {
+        narrow: ring[i].dist(ring[j]) / width.max(1e-9),
+        width,
+        line: septum(ring, &a, &b, ring[i], ring[j], image),
+        turn: notch_turn(ring, i, width) + notch_turn(ring, j, width),
+        aspect: la.0.min(lb.0),
+        share: aa.min(ab) / aa.max(ab),
+        lobes: (a, b),
+    })
+}
+
+/// The lobes of `ring` at the chord `i`–`j` when its ends are off the frame's edge and
+/// both lobes are of a daughter's share ([`MIN_DAUGHTER_SHARE`]).
+fn daughters(
+    ring: &[Point],
+    i: usize,
+    j: usize,
+    image: &Field,
+) -> Option<(Vec<Point>, Vec<Point>)> {
+    if !off_edge(ring[i], image) || !off_edge(ring[j], image) {
+        return None;
+    }
+    let (a, b) = lobes(ring, i, j)?;
+    let (aa, ab) = (signed_area(&a), signed_area(&b));
+    (aa > 0.0 && ab > 0.0 && aa.min(ab) >= MIN_DAUGHTER_SHARE * aa.max(ab)).then_some((a, b))
+}
+
+/// The shortest chord of `ring` whose ends are at least a fifth of the perimeter apart
+/// both ways, its length discounted by a septum `line` ([`neck_cut_along`]).
+fn shortest_chord(ring: &[Point], line: Option<&Field>) -> Option<(usize, usize)> {
     let n = ring.len();
     if n < 8 {
         return None;
@@ -344,46 +420,55 @@ pub fn neck_cut_along(
             }
         }
     }
-    let (_, i, j) = best?;
-    let d = ring[i].dist(ring[j]);
-    if !off_edge(ring[i], image) || !off_edge(ring[j], image) {
-        return None;
+    best.map(|(_, i, j)| (i, j))
+}
+
+/// The shortest chord of an outline that leaves two lobes of a daughter's share
+/// ([`neck_cut`]), as measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Neck {
+    /// The chord's length over the thinner lobe's width.
+    pub narrow: f64,
+    /// The thinner lobe's width, pixels.
+    pub width: f64,
+    /// How background-like the image is along the chord ([`septum`]).
+    pub line: f64,
+    /// How far the outline turns inward at the chord's two ends together, radians.
+    pub turn: f64,
+    /// The less elongated lobe's aspect.
+    pub aspect: f64,
+    /// The smaller lobe's area over the larger's.
+    pub share: f64,
+    /// The two lobes, each made of the outline's points.
+    pub lobes: (Vec<Point>, Vec<Point>),
+}
+
+impl Neck {
+    /// Whether both lobes are rods ([`MIN_LOBE_ASPECT`], [`MIN_STUB_ASPECT`]).
+    pub fn rods(&self) -> bool {
+        self.aspect >= MIN_LOBE_ASPECT
+            || (self.aspect >= MIN_STUB_ASPECT && self.share >= ROUND_SHARE)
     }
-    let (a, b) = lobes(ring, i, j)?;
-    let (aa, ab) = (signed_area(&a), signed_area(&b));
-    if aa <= 0.0 || ab <= 0.0 || aa.min(ab) < MIN_DAUGHTER_SHARE * aa.max(ab) {
-        return None;
+
+    /// Whether the outline is two cells here ([`neck_cut`]'s rule).
+    pub fn cut(&self) -> bool {
+        let (d, line, turn) = (self.narrow, self.line, self.turn);
+        if !self.rods() {
+            // Round lobes: sister nuclei a thin gap apart that the contour still bridges.
+            let gap = d < ROUND_NARROW && line >= ROUND_GAP;
+            let caps = d < ROUND_NOTCH_NARROW && turn >= ROUND_NOTCH_TURN;
+            return (gap || caps) && self.share >= ROUND_SHARE;
+        }
+        // A mother's last waist: wide, bending gently, no clear line (on rods wide enough
+        // for the turn to be measured).
+        let waist = d >= SMOOTH_NECK
+            && turn < SMOOTH_TURN
+            && line < SMOOTH_LINE
+            && self.width >= SMOOTH_MIN_WIDTH;
+        d < NARROW + SEPTUM_WIDENS * line + NOTCH_WIDENS * turn
+            && (d <= WIDE_NECK || line >= WIDE_NECK_LINE)
+            && !waist
     }
-    let (la, lb) = (elongation(&a), elongation(&b));
-    let width = la.1.min(lb.1);
-    if let Some(f) = line {
-        let contrast = along(f, ring[i], ring[j]) - 0.5 * (core_mean(f, &a) + core_mean(f, &b));
-        let ok = la.0.min(lb.0) >= LINE_LOBE_ASPECT
-            && contrast >= LINE_CONTRAST
-            && d < LINE_WIDE * width;
-        return ok.then_some((a, b));
-    }
-    let line = septum(ring, &a, &b, ring[i], ring[j], image);
-    let (aspect, share) = (la.0.min(lb.0), aa.min(ab) / aa.max(ab));
-    let rods = aspect >= MIN_LOBE_ASPECT || (aspect >= MIN_STUB_ASPECT && share >= ROUND_SHARE);
-    if !rods {
-        // Round lobes: sister nuclei a thin gap apart that the contour still bridges.
-        let gap = d < ROUND_NARROW * width && line >= ROUND_GAP;
-        let caps = d < ROUND_NOTCH_NARROW * width
-            && notch_turn(ring, i, width) + notch_turn(ring, j, width) >= ROUND_NOTCH_TURN;
-        return ((gap || caps) && share >= ROUND_SHARE).then_some((a, b));
-    }
-    let turn = notch_turn(ring, i, width) + notch_turn(ring, j, width);
-    // A mother's last waist: wide, bending gently, no clear line (on rods wide enough
-    // for the turn to be measured).
-    let waist = d >= SMOOTH_NECK * width
-        && turn < SMOOTH_TURN
-        && line < SMOOTH_LINE
-        && width >= SMOOTH_MIN_WIDTH;
-    let cut = d < (NARROW + SEPTUM_WIDENS * line + NOTCH_WIDENS * turn) * width
-        && (d <= WIDE_NECK * width || line >= WIDE_NECK_LINE)
-        && !waist;
-    cut.then_some((a, b))
 }
 
 /// The two lobes of `ring` on either side of the chord from `ring[i]` to `ring[j]`

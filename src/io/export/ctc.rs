@@ -67,7 +67,7 @@ pub fn label_image(labels: &[u32], width: usize, height: usize, tiff: bool) -> O
 pub const CSV_HEADER: &str = "track,frame,area_px,centroid_x,centroid_y,parent\n";
 
 /// One row per cell of `frame`: track, frame, area, centroid, parent track (0: none). A
-/// cell seen in two pieces (sisters taken back: [`TrackedFrame::take_back`]) is one row,
+/// cell seen in two pieces (sisters taken back: [`TrackedFrame::revise`]) is one row,
 /// its area the pieces' sum and its centroid theirs.
 pub fn csv_rows(frame: &TrackedFrame, lineage: &Lineage) -> String {
     let mut rows: Vec<(u32, f64, f64, f64)> = Vec::new();
