@@ -38,7 +38,9 @@
 //!   into the piece under her contour and that seed's cell;
 //! - a cell whose outline has a neck with the image brighter along it ([`neck`]) is cut
 //!   there: sister rods touching end to end never pinch apart in the image, so no split
-//!   event comes, and the cut is their division (children of the mother, as a split's);
+//!   event comes, and the cut is their division (children of the mother, as a split's),
+//!   dated a frame earlier when the frame before already showed two cells
+//!   (`Tracker::date`);
 //!   an outline of two rods side by side, which has no neck, is cut along their contact
 //!   ([`side`]) in the same way;
 //! - a new cell (on frame 0 or picked up later) that does not stand out from the band
@@ -51,7 +53,9 @@
 //!   lies on the seam the image shows, not where their fronts first met); on frame 0,
 //!   from automatic seeds only, two touching cells with no seam between them, or whose
 //!   union is one round convex body, are one cell its seeds cut in two, and are joined
-//!   before any track starts.
+//!   before any track starts; so are two end to end whose union, evolved again as one
+//!   outline, has no neck the tracker cuts (`Tracker::join_rods`: a mother seeded on
+//!   both sides of her waist).
 //!
 //! Memory holds the frame being tracked and the image, contours and labels of the one
 //! before.
@@ -106,6 +110,15 @@ pub const EARLIER_LINE: f64 = 0.5;
 /// widths) than the frame before. A mother's waist narrows by 0.09–0.23 widths a frame
 /// to its last; sisters' contact hardly changes at birth.
 pub const EARLIER_NARROWING: f64 = 0.05;
+
+/// Frame 0's touching pieces are evolved again as one (`Tracker::join_rods`) when
+/// their union is a rod at most this many times as wide as either piece: end to end,
+/// not side by side (nor a rod beside two cells read as one).
+pub const JOIN_ROD_WIDE: f64 = 1.3;
+
+/// ... and joined only when that one outline keeps their area within this share (it did
+/// not spread over a neighbour or shrink away).
+pub const JOIN_ROD_AREA: f64 = 0.8;
 
 /// A frame after the first evolves through the coarse pyramid levels only when the
 /// median half-width (2A/P) of the last frame's cells is at least this many pixels (2.35
@@ -181,7 +194,7 @@ pub struct TrackedFrame {
     /// Divisions of the frame before that this frame took back: sisters that came
     /// apart there and are one cell again here (see [`TrackedFrame::revise`]).
     pub undone: Vec<Division>,
-    /// Divisions this frame dated a frame earlier ([`Tracker::date`]): the frame before
+    /// Divisions this frame dated a frame earlier (`Tracker::date`): the frame before
     /// is revised to show the children.
     #[serde(default)]
     pub earlier: Vec<Earlier>,
@@ -385,7 +398,11 @@ impl Tracker {
             evolution_frames,
         };
         let joined = match (model.as_deref(), automatic) {
-            (Some(m), true) => partition::join_pieces(&mut pieces, m),
+            (Some(m), true) => {
+                let mut joined = partition::join_pieces(&mut pieces, m);
+                joined.extend(self.join_rods(image, &mut pieces, m)?);
+                joined
+            }
             _ => Vec::new(),
         };
         let groups = claim(&origins, pieces);
@@ -681,6 +698,89 @@ impl Tracker {
             .is_some_and(|k| k.parent == 0 && k.first > 0 && k.first + 1 == t)
     }
 
+    /// Frame 0's touching pieces that are one rod its seeds cut in two, joined; returns
+    /// the joined outlines. Each pair of touching pieces (each piece in one pair, the
+    /// longest contacts first) whose union is a rod no wider than [`JOIN_ROD_WIDE`] of
+    /// either piece is evolved again as one outline, with every other piece beside
+    /// it, as a later frame evolves a carried cell; when the neck rule does not cut
+    /// what comes out ([`neck::cut_or_measure`]), the pair is that one cell. A later
+    /// frame asks the same of every cell: a mother a frame or two before her division,
+    /// her waist seeded on both sides, was two tracks from frame 0 and her division was
+    /// never seen.
+    fn join_rods(
+        &self,
+        image: &Field,
+        pieces: &mut [Vec<TrackedObject>],
+        model: &ImageModel,
+    ) -> Result<Vec<Vec<Point>>, EvolveError> {
+        let (w, h) = (image.width, image.height);
+        let flat: Vec<&TrackedObject> = pieces.iter().flatten().collect();
+        let labels = labels_of(pieces, w, h);
+        // A piece's width: across its length when it is a rod; a stub's (half a
+        // mother cut across) its longer extent, which is the rod's width.
+        let width = |p: &[Point]| {
+            let (aspect, across, _) = neck::elongation(p);
+            if aspect >= neck::MIN_LOBE_ASPECT {
+                across
+            } else {
+                across * aspect
+            }
+        };
+        let pairs: Vec<((u32, u32), Vec<Point>)> = partition::touching_pairs(&labels, model)
+            .into_iter()
+            .filter(|((a, b), ring)| {
+                let (aspect, across, _) = neck::elongation(ring);
+                let piece = |l: u32| width(&flat[l as usize - 1].ring);
+                aspect >= neck::MIN_LOBE_ASPECT
+                    && across <= JOIN_ROD_WIDE * piece(*a).min(piece(*b))
+            })
+            .collect();
+        if pairs.is_empty() {
+            return Ok(Vec::new());
+        }
+        let paired: Vec<u32> = pairs.iter().flat_map(|((a, b), _)| [*a, *b]).collect();
+        let mut shapes: Vec<Shape> = pairs
+            .iter()
+            .map(|(_, r)| Shape::Polygon(r.clone()))
+            .collect();
+        shapes.extend(
+            (1..=flat.len() as u32)
+                .filter(|l| !paired.contains(l))
+                .map(|l| Shape::Polygon(flat[l as usize - 1].ring.clone())),
+        );
+        let evolved = self.evolve(image, &shapes)?.0;
+        // Per pair joined, its first piece's new outline; its second piece goes.
+        let mut one: HashMap<u32, Vec<Point>> = HashMap::new();
+        let mut gone: Vec<u32> = Vec::new();
+        for (((a, b), union), got) in pairs.iter().zip(&evolved) {
+            let [r] = got.as_slice() else {
+                continue;
+            };
+            let area = crate::geometry::signed_area(union);
+            if (r.area - area).abs() > (1.0 - JOIN_ROD_AREA) * area {
+                continue;
+            }
+            if neck::cut_or_measure(&r.ring, image).is_err() {
+                one.insert(*a, r.ring.clone());
+                gone.push(*b);
+            }
+        }
+        let mut k = 0u32;
+        let mut joined = Vec::new();
+        for g in pieces.iter_mut() {
+            g.retain_mut(|o| {
+                k += 1;
+                if let Some(ring) = one.remove(&k) {
+                    joined.push(ring.clone());
+                    *o = object(ring);
+                }
+                !gone.contains(&k)
+            });
+            g.sort_by(|a, b| b.area.total_cmp(&a.area));
+        }
+        Ok(joined)
+    }
+
     /// Dates the divisions of `frame` cut at a neck (the parents `cut`) a frame earlier
     /// when the parent's outline in the frame before was already two cells: its neck,
     /// left uncut there, bent at its ends or showed a line ([`EARLIER_TURN`]) and had
@@ -912,7 +1012,14 @@ mod tests {
         t.date(&mut frame, &[1]);
         assert!(frame.divisions.is_empty());
         let e = &frame.earlier[0];
-        assert_eq!(e.division, Division { frame: 1, parent: 1, children: [2, 3] });
+        assert_eq!(
+            e.division,
+            Division {
+                frame: 1,
+                parent: 1,
+                children: [2, 3]
+            }
+        );
         // Each lobe goes to the child it is nearer to.
         assert_eq!(e.cells[0].track, 2);
         assert!(e.cells[0].centroid.x > 30.0 && e.cells[1].centroid.x < 18.0);
@@ -924,7 +1031,10 @@ mod tests {
         let whole = object(rod(10.0, 38.0, 8.0));
         let mut before = TrackedFrame {
             frame: 1,
-            objects: vec![TrackedObject { track: 1, ..whole.clone() }],
+            objects: vec![TrackedObject {
+                track: 1,
+                ..whole.clone()
+            }],
             divisions: Vec::new(),
             undone: Vec::new(),
             earlier: Vec::new(),

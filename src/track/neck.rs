@@ -431,7 +431,8 @@ pub struct Neck {
     pub narrow: f64,
     /// The thinner lobe's width, pixels.
     pub width: f64,
-    /// How background-like the image is along the chord ([`septum`]).
+    /// How background-like the image is along the chord: 0 as dark as the lobes' cores,
+    /// 1 as the band just outside the outline.
     pub line: f64,
     /// How far the outline turns inward at the chord's two ends together, radians.
     pub turn: f64,

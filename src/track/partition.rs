@@ -312,6 +312,41 @@ impl Cells {
     }
 }
 
+/// Pairs of touching cells of `labels` (`w` wide), each cell in one pair at most: the
+/// longest contacts first. With each pair, the outline of the two cells' union.
+pub fn touching_pairs(labels: &[u32], model: &ImageModel) -> Vec<((u32, u32), Vec<Point>)> {
+    let (w, h) = model.size();
+    let n = labels.iter().copied().max().unwrap_or(0) as usize;
+    if labels.len() != w * h {
+        return Vec::new();
+    }
+    let mut count: std::collections::BTreeMap<(u32, u32), usize> = Default::default();
+    for (i, j) in contacts(labels, w, h) {
+        let (a, b) = (labels[i], labels[j]);
+        *count.entry((a.min(b), a.max(b))).or_default() += 1;
+    }
+    let mut by_length: Vec<((u32, u32), usize)> = count.into_iter().collect();
+    by_length.sort_by(|x, y| y.1.cmp(&x.1).then(x.0.cmp(&y.0)));
+    let mut taken = vec![false; n + 1];
+    let mut roots: Vec<u32> = (0..=n as u32).collect();
+    let mut pairs = Vec::new();
+    for ((a, b), _) in by_length {
+        if taken[a as usize] || taken[b as usize] {
+            continue;
+        }
+        taken[a as usize] = true;
+        taken[b as usize] = true;
+        roots[b as usize] = a;
+        pairs.push((a, b));
+    }
+    let mut rings: FxHashMap<u32, Vec<Point>> =
+        joined_rings(labels, &roots, model).into_iter().collect();
+    pairs
+        .into_iter()
+        .filter_map(|(a, b)| rings.remove(&a).map(|r| ((a, b), r)))
+        .collect()
+}
+
 /// 4-neighbouring pixel pairs `(i, j)` of two different cells (`j` right of or below `i`).
 fn contacts(labels: &[u32], w: usize, h: usize) -> Vec<(usize, usize)> {
     let mut out = Vec::new();
