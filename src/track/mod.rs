@@ -702,8 +702,10 @@ impl Tracker {
     /// the joined outlines. Each pair of touching pieces (each piece in one pair, the
     /// longest contacts first) whose union is a rod no wider than [`JOIN_ROD_WIDE`] of
     /// either piece is evolved again as one outline, with every other piece beside
-    /// it, as a later frame evolves a carried cell; when the neck rule does not cut
-    /// what comes out ([`neck::cut_or_measure`]), the pair is that one cell. A later
+    /// it, as a later frame evolves a carried cell; when what comes out is one outline
+    /// whose neck is not cut ([`neck::cut_or_measure`]) and bends gently
+    /// ([`neck::SMOOTH_TURN`]), the pair is that one cell (two touching disks, meeting
+    /// at a sharp notch, stay two). A later
     /// frame asks the same of every cell: a mother a frame or two before her division,
     /// her waist seeded on both sides, was two tracks from frame 0 and her division was
     /// never seen.
@@ -760,7 +762,11 @@ impl Tracker {
             if (r.area - area).abs() > (1.0 - JOIN_ROD_AREA) * area {
                 continue;
             }
-            if neck::cut_or_measure(&r.ring, image).is_err() {
+            // One rod: its neck is not cut and bends gently, a waist or none (two
+            // touching disks meet at a sharp notch: two nuclei, whatever the neck rule
+            // says of round lobes).
+            if matches!(neck::cut_or_measure(&r.ring, image), Err(Some(k)) if k.turn < neck::SMOOTH_TURN)
+            {
                 one.insert(*a, r.ring.clone());
                 gone.push(*b);
             }
