@@ -80,7 +80,7 @@ use carry::{
     ring_origins, settled, shrunk, uncovered, Origin,
 };
 use neck::Neck;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
 /// Smallest area of a split's smaller piece, as a share of the larger, for the split to
@@ -110,6 +110,10 @@ pub const EARLIER_LINE: f64 = 0.5;
 /// widths) than the frame before. A mother's waist narrows by 0.09–0.23 widths a frame
 /// to its last; sisters' contact hardly changes at birth.
 pub const EARLIER_NARROWING: f64 = 0.05;
+
+/// The narrowing allowed ([`EARLIER_NARROWING`]) grows by this much per radian the neck
+/// bends beyond [`EARLIER_TURN`]: the sharper the notch, the surer it is two caps.
+pub const EARLIER_NARROWING_PER_TURN: f64 = 0.15;
 
 /// Frame 0's touching pieces are evolved again as one (`Tracker::join_rods`) when
 /// their union is a rod at most this many times as wide as either piece: end to end,
@@ -302,7 +306,7 @@ pub struct Tracker {
     /// taken back when the two are one cell again in this frame ([`partition::rejoined`]).
     apart: Vec<Division>,
     /// The necks of the last frame's cells that were not cut, by track, each with the
-    /// neck's width ([`Neck::narrow`]) the frame before ([`Tracker::date`]).
+    /// neck's [`Neck::narrow`] the frame before ([`Tracker::date`]).
     necks: HashMap<u32, (Neck, Option<f64>)>,
 }
 
@@ -353,10 +357,13 @@ impl Tracker {
         if self.labels.len() != w * h {
             self.labels = vec![0; w * h];
         }
+        // How far the field moved since the last frame (a drifting stage).
+        let mut shift = Point::new(0.0, 0.0);
         if let Some(before) = self.previous.take() {
             let s = drift::field_shift(&before, image, &self.labels);
             if s != (0, 0) {
                 self.follow(s, w, h);
+                shift = Point::new(s.0 as f64, s.1 as f64);
             }
         }
         let mut shapes: Vec<Shape> = Vec::new();
@@ -400,7 +407,7 @@ impl Tracker {
         let joined = match (model.as_deref(), automatic) {
             (Some(m), true) => {
                 let mut joined = partition::join_pieces(&mut pieces, m);
-                joined.extend(self.join_rods(image, &mut pieces, m)?);
+                joined.extend(self.join_rods(image, &mut pieces, m));
                 joined
             }
             _ => Vec::new(),
@@ -474,7 +481,12 @@ impl Tracker {
                 self.labels = raster(&frame.objects);
             }
         }
-        self.date(&mut frame, &neck_cut);
+        self.date(&mut frame, &neck_cut, shift);
+        // The neck is of the evolved outline, before the line between touching cells
+        // moved onto the image's seam ([`partition::divide_again`]): that outline follows
+        // pixel edges, whose steps read as turns. The cell it revises keeps the outline's
+        // lobes; its pixels in the frame's labels are parted by them
+        // ([`revise_labels`]).
         self.necks = necks;
         self.apart = frame
             .divisions
@@ -701,8 +713,8 @@ impl Tracker {
     /// Frame 0's touching pieces that are one rod its seeds cut in two, joined; returns
     /// the joined outlines. Each pair of touching pieces (each piece in one pair, the
     /// longest contacts first) whose union is a rod no wider than [`JOIN_ROD_WIDE`] of
-    /// either piece is evolved again as one outline, with every other piece beside
-    /// it, as a later frame evolves a carried cell; when what comes out is one outline
+    /// either piece is evolved again on frame 0 as one outline, with every other piece
+    /// beside it; when what comes out is one outline
     /// whose neck is not cut ([`neck::cut_or_measure`]) and bends gently
     /// ([`neck::SMOOTH_TURN`]), the pair is that one cell (two touching disks, meeting
     /// at a sharp notch, stay two). A later
@@ -714,7 +726,7 @@ impl Tracker {
         image: &Field,
         pieces: &mut [Vec<TrackedObject>],
         model: &ImageModel,
-    ) -> Result<Vec<Vec<Point>>, EvolveError> {
+    ) -> Vec<Vec<Point>> {
         let (w, h) = (image.width, image.height);
         let flat: Vec<&TrackedObject> = pieces.iter().flatten().collect();
         let labels = labels_of(pieces, w, h);
@@ -738,9 +750,9 @@ impl Tracker {
             })
             .collect();
         if pairs.is_empty() {
-            return Ok(Vec::new());
+            return Vec::new();
         }
-        let paired: Vec<u32> = pairs.iter().flat_map(|((a, b), _)| [*a, *b]).collect();
+        let paired: HashSet<u32> = pairs.iter().flat_map(|((a, b), _)| [*a, *b]).collect();
         let mut shapes: Vec<Shape> = pairs
             .iter()
             .map(|(_, r)| Shape::Polygon(r.clone()))
@@ -750,10 +762,13 @@ impl Tracker {
                 .filter(|l| !paired.contains(l))
                 .map(|l| Shape::Polygon(flat[l as usize - 1].ring.clone())),
         );
-        let evolved = self.evolve(image, &shapes)?.0;
+        // Joining refines frame 0; an evolution that fails leaves the pieces as they are.
+        let Ok((evolved, _, _)) = self.evolve(image, &shapes) else {
+            return Vec::new();
+        };
         // Per pair joined, its first piece's new outline; its second piece goes.
         let mut one: HashMap<u32, Vec<Point>> = HashMap::new();
-        let mut gone: Vec<u32> = Vec::new();
+        let mut gone: HashSet<u32> = HashSet::new();
         for (((a, b), union), got) in pairs.iter().zip(&evolved) {
             let [r] = got.as_slice() else {
                 continue;
@@ -762,13 +777,13 @@ impl Tracker {
             if (r.area - area).abs() > (1.0 - JOIN_ROD_AREA) * area {
                 continue;
             }
-            // One rod: its neck is not cut and bends gently, a waist or none (two
-            // touching disks meet at a sharp notch: two nuclei, whatever the neck rule
-            // says of round lobes).
+            // One rod: its neck is measured, not cut, and bends gently (a waist, or a
+            // chord across a straight rod); two touching disks meet at a sharp notch:
+            // two nuclei, whatever the neck rule says of round lobes.
             if matches!(neck::cut_or_measure(&r.ring, image), Err(Some(k)) if k.turn < neck::SMOOTH_TURN)
             {
                 one.insert(*a, r.ring.clone());
-                gone.push(*b);
+                gone.insert(*b);
             }
         }
         let mut k = 0u32;
@@ -784,19 +799,22 @@ impl Tracker {
             });
             g.sort_by(|a, b| b.area.total_cmp(&a.area));
         }
-        Ok(joined)
+        joined
     }
 
     /// Dates the divisions of `frame` cut at a neck (the parents `cut`) a frame earlier
     /// when the parent's outline in the frame before was already two cells: its neck,
-    /// left uncut there, bent at its ends or showed a line ([`EARLIER_TURN`]) and had
-    /// stopped narrowing ([`EARLIER_NARROWING`]). One frame's outline cannot tell a
-    /// mother's last waist from two caps just meeting (their necks are equally wide);
-    /// the cut that follows says a division came, and the frames around it say which
-    /// frame it came in. The frame before is revised by [`TrackedFrame::revise`]: the
-    /// parent's cell there becomes the two lobes of its neck, each the child it is
-    /// nearer to. A parent seen for one frame only keeps its division where it is.
-    fn date(&mut self, frame: &mut TrackedFrame, cut: &[u32]) {
+    /// left uncut there, parted it into rods, bent at its ends or showed a line
+    /// ([`EARLIER_TURN`]) and had stopped narrowing ([`EARLIER_NARROWING`],
+    /// [`EARLIER_NARROWING_PER_TURN`]). One frame's outline cannot tell a mother's last
+    /// waist from two caps just meeting (their necks are equally wide); the cut that
+    /// follows says a division came, and the frames around it say which frame it came
+    /// in. The frame before is revised by [`TrackedFrame::revise`]: the parent's cell
+    /// there becomes the two lobes of its neck, each the child it is nearer to (the
+    /// lobes moved by `shift`, the field's drift since). A parent seen for one frame
+    /// only keeps its division where it is. A tracker resumed after a correction has no
+    /// necks of the corrected frame, and never revises it.
+    fn date(&mut self, frame: &mut TrackedFrame, cut: &[u32], shift: Point) {
         let t = frame.frame;
         for d in frame.divisions.clone() {
             if !cut.contains(&d.parent) {
@@ -805,10 +823,16 @@ impl Tracker {
             let Some((neck, before)) = self.necks.get(&d.parent) else {
                 continue;
             };
+            let bends = neck.turn + EARLIER_LINE * neck.line;
+            let narrowing = EARLIER_NARROWING + EARLIER_NARROWING_PER_TURN * (bends - EARLIER_TURN);
             let two = neck.rods()
-                && neck.turn + EARLIER_LINE * neck.line >= EARLIER_TURN
-                && before.is_none_or(|n| n - neck.narrow <= EARLIER_NARROWING);
-            let seen = self.lineage.get(d.parent).is_some_and(|p| p.first + 2 <= t);
+                && bends >= EARLIER_TURN
+                && before.is_none_or(|n| n - neck.narrow <= narrowing);
+            // A cell picked up new two frames ago would be cells found as one in the
+            // frame before ([`Tracker::found_as_one`]), not a division.
+            let seen = self.lineage.get(d.parent).is_some_and(|p| {
+                p.first + 2 <= t && !(p.parent == 0 && p.first > 0 && p.first + 2 == t)
+            });
             if !(two && seen) {
                 continue;
             }
@@ -817,7 +841,8 @@ impl Tracker {
                 continue;
             };
             let (a, b) = (object(neck.lobes.0.clone()), object(neck.lobes.1.clone()));
-            let far = |x: &TrackedObject, c: &TrackedObject| x.centroid.dist(c.centroid);
+            // The lobes lie where the frame before had them: moved with the field.
+            let far = |x: &TrackedObject, c: &TrackedObject| (x.centroid + shift).dist(c.centroid);
             let (a, b) = if far(&a, c0) + far(&b, c1) <= far(&a, c1) + far(&b, c0) {
                 (a, b)
             } else {
@@ -1015,7 +1040,7 @@ mod tests {
     #[test]
     fn a_division_is_dated_where_the_neck_first_showed_two_cells() {
         let (mut t, mut frame) = divided(0, caps(0.9, 0.1), Some(0.62));
-        t.date(&mut frame, &[1]);
+        t.date(&mut frame, &[1], Point::new(0.0, 0.0));
         assert!(frame.divisions.is_empty());
         let e = &frame.earlier[0];
         assert_eq!(
@@ -1056,6 +1081,17 @@ mod tests {
         assert!(!labels.contains(&1));
         assert_eq!((labels[20 * w + 35], labels[20 * w + 13]), (2, 3));
         assert_eq!(labels[20 * w + 45], 0);
+
+        // On a drifting stage the lobes are matched where the field moved them.
+        let (mut t, mut frame) = divided(0, caps(0.9, 0.1), Some(0.62));
+        for o in frame.objects.iter_mut() {
+            o.centroid.x += 9.0;
+        }
+        let kept = frame.clone();
+        t.date(&mut frame, &[1], Point::new(0.0, 0.0));
+        assert_eq!(frame, kept, "9 px away, more than a width: not the lobes");
+        t.date(&mut frame, &[1], Point::new(9.0, 0.0));
+        assert_eq!(frame.earlier.len(), 1);
     }
 
     #[test]
@@ -1070,14 +1106,14 @@ mod tests {
         ] {
             let (mut t, mut frame) = divided(first, neck, before);
             let kept = frame.clone();
-            t.date(&mut frame, &[1]);
+            t.date(&mut frame, &[1], Point::new(0.0, 0.0));
             assert_eq!(frame, kept);
             assert_eq!(t.lineage.get(2).unwrap().first, 2);
         }
         // A division that was not a cut at a neck (the contour split by itself).
         let (mut t, mut frame) = divided(0, caps(1.2, 0.3), None);
         let kept = frame.clone();
-        t.date(&mut frame, &[]);
+        t.date(&mut frame, &[], Point::new(0.0, 0.0));
         assert_eq!(frame, kept);
     }
 

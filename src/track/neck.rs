@@ -423,8 +423,8 @@ fn shortest_chord(ring: &[Point], line: Option<&Field>) -> Option<(usize, usize)
     best.map(|(_, i, j)| (i, j))
 }
 
-/// The shortest chord of an outline that leaves two lobes of a daughter's share
-/// ([`neck_cut`]), as measured.
+/// An outline's shortest chord between points a fifth of its perimeter apart, when the
+/// two lobes it leaves are of a daughter's share ([`measure`]), as measured.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Neck {
     /// The chord's length over the thinner lobe's width.

@@ -312,8 +312,9 @@ impl Cells {
     }
 }
 
-/// Pairs of touching cells of `labels` (`w` wide), each cell in one pair at most: the
-/// longest contacts first. With each pair, the outline of the two cells' union.
+/// Pairs of touching cells of `labels` (the model's size), each cell in one pair at
+/// most: the longest contacts first. With each pair, the outline of the two cells'
+/// union.
 pub fn touching_pairs(labels: &[u32], model: &ImageModel) -> Vec<((u32, u32), Vec<Point>)> {
     let (w, h) = model.size();
     let n = labels.iter().copied().max().unwrap_or(0) as usize;
