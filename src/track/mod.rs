@@ -740,15 +740,14 @@ impl Tracker {
                 across * aspect
             }
         };
-        let pairs: Vec<((u32, u32), Vec<Point>)> = partition::touching_pairs(&labels, model)
-            .into_iter()
-            .filter(|((a, b), ring)| {
-                let (aspect, across, _) = neck::elongation(ring);
-                let piece = |l: u32| width(&flat[l as usize - 1].ring);
-                aspect >= neck::MIN_LOBE_ASPECT
-                    && across <= JOIN_ROD_WIDE * piece(*a).min(piece(*b))
-            })
-            .collect();
+        // Judged on the pieces before pairing: a half that touches a neighbour along a
+        // longer edge than its other half still pairs with its other half.
+        let ring = |l: u32| flat[l as usize - 1].ring.as_slice();
+        let pairs = partition::touching_pairs(&labels, model, |a, b| {
+            let (aspect, across, _) = neck::elongation_of(&[ring(a), ring(b)]);
+            aspect >= neck::MIN_LOBE_ASPECT
+                && across <= JOIN_ROD_WIDE * width(ring(a)).min(width(ring(b)))
+        });
         if pairs.is_empty() {
             return Vec::new();
         }

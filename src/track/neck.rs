@@ -589,20 +589,35 @@ pub(crate) fn septum(
 /// The aspect (major over minor axis) of polygon `p`'s second moments, its width across
 /// the major axis (a band's, √(12 × minor moment / area)) and that axis (unit).
 pub(crate) fn elongation(p: &[Point]) -> (f64, f64, Point) {
-    let n = p.len();
-    let (a2, c) = area2_centroid(p);
+    elongation_of(&[p])
+}
+
+/// [`elongation`] of the region that disjoint polygons `parts` cover together.
+pub(crate) fn elongation_of(parts: &[&[Point]]) -> (f64, f64, Point) {
+    let (mut a2, mut at) = (0.0, Point::new(0.0, 0.0));
+    for p in parts {
+        let (k, c) = area2_centroid(p);
+        a2 += k;
+        at = at + c * k;
+    }
     if a2.abs() < 1e-9 {
         return (1.0, 0.0, Point::new(1.0, 0.0));
     }
+    let c = at * (1.0 / a2);
+    // Second moments about the common centroid (each polygon's formula holds about any
+    // point, so the parts' sums add).
     let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
-    for i in 0..n {
-        let (u, v) = (p[i] - c, p[(i + 1) % n] - c);
-        let k = u.cross(v);
-        sxx += k * (u.y * u.y + u.y * v.y + v.y * v.y);
-        syy += k * (u.x * u.x + u.x * v.x + v.x * v.x);
-        sxy += k * (u.x * v.y + 2.0 * u.x * u.y + 2.0 * v.x * v.y + v.x * u.y);
+    for p in parts {
+        let n = p.len();
+        for i in 0..n {
+            let (u, v) = (p[i] - c, p[(i + 1) % n] - c);
+            let k = u.cross(v);
+            sxx += k * (u.y * u.y + u.y * v.y + v.y * v.y);
+            syy += k * (u.x * u.x + u.x * v.x + v.x * v.x);
+            sxy += k * (u.x * v.y + 2.0 * u.x * u.y + 2.0 * v.x * v.y + v.x * u.y);
+        }
     }
-    // Second moments about the centroid (Ixx = ∫y², Iyy = ∫x², Ixy = ∫xy).
+    // Ixx = ∫y², Iyy = ∫x², Ixy = ∫xy.
     let (ixx, iyy, ixy) = (sxx / 12.0, syy / 12.0, sxy / 24.0);
     let (mx, my, mxy) = (iyy, ixx, ixy); // ∫x², ∫y², ∫xy
     let tr = 0.5 * (mx + my);
@@ -756,6 +771,31 @@ pub(crate) mod tests {
             "the caps meet over half the width"
         );
         assert!(neck_cut(&ring, &img).is_some());
+    }
+
+    #[test]
+    fn two_halves_of_a_rod_measure_as_the_rod() {
+        let p = |x: f64, y: f64| Point::new(x, y);
+        // A 40×8 box along a diagonal, and its two halves.
+        let (c, u, v) = (p(50.0, 50.0), p(0.6, 0.8), p(-0.8, 0.6));
+        let at = |a: f64, b: f64| c + u * a + v * b;
+        let whole = [
+            at(-20.0, -4.0),
+            at(20.0, -4.0),
+            at(20.0, 4.0),
+            at(-20.0, 4.0),
+        ];
+        let left = [at(-20.0, -4.0), at(0.0, -4.0), at(0.0, 4.0), at(-20.0, 4.0)];
+        let right = [at(0.0, -4.0), at(20.0, -4.0), at(20.0, 4.0), at(0.0, 4.0)];
+        let (a, w, axis) = elongation(&whole);
+        let (a2, w2, axis2) = elongation_of(&[&left, &right]);
+        assert!((a - 5.0).abs() < 1e-9 && (w - 8.0).abs() < 1e-9);
+        assert!((a2 - a).abs() < 1e-9 && (w2 - w).abs() < 1e-9);
+        assert!(axis.cross(axis2).abs() < 1e-9 && axis.cross(u).abs() < 1e-9);
+        // Side by side instead: as wide as long.
+        let beside = [at(-20.0, 4.0), at(0.0, 4.0), at(0.0, 12.0), at(-20.0, 12.0)];
+        let (a3, w3, _) = elongation_of(&[&left, &beside]);
+        assert!((a3 - 20.0 / 16.0).abs() < 1e-9 && (w3 - 16.0).abs() < 1e-9);
     }
 
     #[test]

@@ -312,10 +312,14 @@ impl Cells {
     }
 }
 
-/// Pairs of touching cells of `labels` (the model's size), each cell in one pair at
-/// most: the longest contacts first. With each pair, the outline of the two cells'
-/// union.
-pub fn touching_pairs(labels: &[u32], model: &ImageModel) -> Vec<((u32, u32), Vec<Point>)> {
+/// Pairs of touching cells of `labels` (the model's size) that `keep` accepts, each cell
+/// in one pair at most: the longest contacts first. With each pair, the outline of the
+/// two cells' union.
+pub fn touching_pairs(
+    labels: &[u32],
+    model: &ImageModel,
+    keep: impl Fn(u32, u32) -> bool,
+) -> Vec<((u32, u32), Vec<Point>)> {
     let (w, h) = model.size();
     let n = labels.iter().copied().max().unwrap_or(0) as usize;
     if labels.len() != w * h {
@@ -326,7 +330,10 @@ pub fn touching_pairs(labels: &[u32], model: &ImageModel) -> Vec<((u32, u32), Ve
         let (a, b) = (labels[i], labels[j]);
         *count.entry((a.min(b), a.max(b))).or_default() += 1;
     }
-    let mut by_length: Vec<((u32, u32), usize)> = count.into_iter().collect();
+    let mut by_length: Vec<((u32, u32), usize)> = count
+        .into_iter()
+        .filter(|&((a, b), _)| keep(a, b))
+        .collect();
     by_length.sort_by(|x, y| y.1.cmp(&x.1).then(x.0.cmp(&y.0)));
     let mut taken = vec![false; n + 1];
     let mut roots: Vec<u32> = (0..=n as u32).collect();
