@@ -4,8 +4,9 @@
 //!
 //! The movie is read whole once before anything is written (a bad movie: one line, exit
 //! 2, no output); then frame by frame, each frame's mask written once the next frame is
-//! tracked (which may take back the divisions of the one before:
-//! [`crate::track::TrackedFrame::undone`]), so memory holds two frames, not the movie
+//! tracked (which may revise the one before: take back its divisions,
+//! [`crate::track::TrackedFrame::undone`], or date one there,
+//! [`crate::track::TrackedFrame::earlier`]), so memory holds two frames, not the movie
 //! (the JSON, when asked, keeps every frame's contours until the end).
 
 use super::run::{init_shapes, params_for, RunSettings};
