@@ -39,6 +39,12 @@ pub fn field_shift(before: &Field, after: &Field, cells: &[u32]) -> (i32, i32) {
     if after.width != w || after.height != h || cells.len() != w * h {
         return (0, 0);
     }
+    // Each frame is normalised on its own (its 0.1 % and 99.9 % quantiles), so a bright
+    // cell that comes or goes rescales every other: the squared difference counted that
+    // as a move (a still movie of nuclei was shifted by 22 px the frame one bright
+    // nucleus faded). Both frames are put on their 1 % and 99 % quantiles first, which
+    // one cell does not move.
+    let (before, after) = (&on_quantiles(before), &on_quantiles(after));
     let on: Vec<usize> = (0..w * h).filter(|&i| cells[i] != 0).collect();
     if on.is_empty() {
         return (0, 0);
@@ -74,6 +80,32 @@ pub fn field_shift(before: &Field, after: &Field, cells: &[u32]) -> (i32, i32) {
         (0, 0)
     }
 }
+
+/// Quantiles [`ON_QUANTILES`] of a frame put at 0 and 1 (read from every
+/// [`QUANTILE_STRIDE`]-th pixel).
+fn on_quantiles(f: &Field) -> Field {
+    let mut v: Vec<f32> = f.data.iter().step_by(QUANTILE_STRIDE).copied().collect();
+    if v.is_empty() {
+        return f.clone();
+    }
+    let at = |v: &mut Vec<f32>, q: f64| {
+        let k = ((v.len() - 1) as f64 * q).round() as usize;
+        *v.select_nth_unstable_by(k, |a, b| a.total_cmp(b)).1
+    };
+    let (lo, hi) = (at(&mut v, ON_QUANTILES.0), at(&mut v, ON_QUANTILES.1));
+    let span = (hi - lo).max(1e-6);
+    Field::new(
+        f.width,
+        f.height,
+        f.data.iter().map(|&x| (x - lo) / span).collect(),
+    )
+}
+
+/// The quantiles both frames are put on before they are compared ([`field_shift`]).
+pub const ON_QUANTILES: (f64, f64) = (0.01, 0.99);
+
+/// Every this many pixels are read for [`ON_QUANTILES`].
+const QUANTILE_STRIDE: usize = 7;
 
 /// `f` at 1/`k` of its resolution: the mean of each k×k block (a partial block at the
 /// right and bottom edges averages what it has). Cheaper than the pyramid's blurred
@@ -191,5 +223,16 @@ mod tests {
         // No cells: nothing to tell the shift by.
         let (after, _) = scene((5, 5));
         assert_eq!(field_shift(&before, &after, &vec![0; cells.len()]), (0, 0));
+    }
+
+    #[test]
+    fn a_frame_brightened_as_a_whole_is_not_a_move() {
+        // Per-frame normalisation rescales a frame whose brightest cell faded.
+        let (before, cells) = scene((0, 0));
+        for s in [(0, 0), (3, -2), (-11, 8)] {
+            let (mut after, _) = scene(s);
+            after.data.iter_mut().for_each(|v| *v = 2.2 * *v - 0.3);
+            assert_eq!(field_shift(&before, &after, &cells), s);
+        }
     }
 }
