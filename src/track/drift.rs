@@ -34,17 +34,16 @@ const MAX_SAMPLES: usize = 4_000;
 /// The shift `(dx, dy)` such that `after` at `x + (dx, dy)` is `before` at `x` over the
 /// pixels of `cells` (a label raster of `before`'s size, 0 outside every cell); `(0, 0)`
 /// when the field did not clearly move, the frames differ in size, or there are no cells.
+/// Both frames as [`on_quantiles`] puts them: each frame is normalised on its own (its
+/// 0.1 % and 99.9 % quantiles), so a bright cell that comes or goes rescales every
+/// other, and the squared difference counted that as a move (a still movie of nuclei
+/// was shifted by 22 px the frame one bright nucleus faded); their 1 % and 99 %
+/// quantiles one cell does not move. The tracker keeps each frame so, for the next.
 pub fn field_shift(before: &Field, after: &Field, cells: &[u32]) -> (i32, i32) {
     let (w, h) = (before.width, before.height);
     if after.width != w || after.height != h || cells.len() != w * h {
         return (0, 0);
     }
-    // Each frame is normalised on its own (its 0.1 % and 99.9 % quantiles), so a bright
-    // cell that comes or goes rescales every other: the squared difference counted that
-    // as a move (a still movie of nuclei was shifted by 22 px the frame one bright
-    // nucleus faded). Both frames are put on their 1 % and 99 % quantiles first, which
-    // one cell does not move.
-    let (before, after) = (&on_quantiles(before), &on_quantiles(after));
     let on: Vec<usize> = (0..w * h).filter(|&i| cells[i] != 0).collect();
     if on.is_empty() {
         return (0, 0);
@@ -83,7 +82,7 @@ pub fn field_shift(before: &Field, after: &Field, cells: &[u32]) -> (i32, i32) {
 
 /// Quantiles [`ON_QUANTILES`] of a frame put at 0 and 1 (read from every
 /// [`QUANTILE_STRIDE`]-th pixel).
-fn on_quantiles(f: &Field) -> Field {
+pub fn on_quantiles(f: &Field) -> Field {
     let mut v: Vec<f32> = f.data.iter().step_by(QUANTILE_STRIDE).copied().collect();
     if v.is_empty() {
         return f.clone();
@@ -216,12 +215,13 @@ mod tests {
     #[test]
     fn a_moved_field_gives_its_shift_and_a_still_one_none() {
         let (before, cells) = scene((0, 0));
+        let before = on_quantiles(&before);
         for s in [(0, 0), (1, 0), (-2, 3), (9, -7), (-17, 14)] {
             let (after, _) = scene(s);
-            assert_eq!(field_shift(&before, &after, &cells), s);
+            assert_eq!(field_shift(&before, &on_quantiles(&after), &cells), s);
         }
         // No cells: nothing to tell the shift by.
-        let (after, _) = scene((5, 5));
+        let after = on_quantiles(&scene((5, 5)).0);
         assert_eq!(field_shift(&before, &after, &vec![0; cells.len()]), (0, 0));
     }
 
@@ -232,7 +232,8 @@ mod tests {
         for s in [(0, 0), (3, -2), (-11, 8)] {
             let (mut after, _) = scene(s);
             after.data.iter_mut().for_each(|v| *v = 2.2 * *v - 0.3);
-            assert_eq!(field_shift(&before, &after, &cells), s);
+            let moved = field_shift(&on_quantiles(&before), &on_quantiles(&after), &cells);
+            assert_eq!(moved, s);
         }
     }
 }

@@ -300,7 +300,8 @@ pub struct Tracker {
     next_seeding: usize,
     /// Object pixels no cell covered after the last frame that placed seeds.
     residual: usize,
-    /// The last frame's image, to tell how far the field moved ([`drift`]).
+    /// The last frame's image on its quantiles ([`drift::on_quantiles`]), to tell how
+    /// far the field moved.
     previous: Option<Field>,
     /// The last frame's divisions whose daughters were born apart ([`partition::meet`]):
     /// taken back when the two are one cell again in this frame ([`partition::rejoined`]).
@@ -332,7 +333,7 @@ impl Tracker {
     /// tracker [`Tracker::resume`]d after a correction): the next frame then follows
     /// the field's drift from it as a tracker that ran on would.
     pub fn set_previous(&mut self, image: Field) {
-        self.previous = Some(image);
+        self.previous = Some(drift::on_quantiles(&image));
     }
 
     /// The frame the next [`Tracker::step`] tracks (0-based).
@@ -359,8 +360,9 @@ impl Tracker {
         }
         // How far the field moved since the last frame (a drifting stage).
         let mut shift = Point::new(0.0, 0.0);
+        let scaled = drift::on_quantiles(image);
         if let Some(before) = self.previous.take() {
-            let s = drift::field_shift(&before, image, &self.labels);
+            let s = drift::field_shift(&before, &scaled, &self.labels);
             if s != (0, 0) {
                 self.follow(s, w, h);
                 shift = Point::new(s.0 as f64, s.1 as f64);
@@ -499,7 +501,7 @@ impl Tracker {
             .iter()
             .map(|o| (o.track, o.ring.clone()))
             .collect();
-        self.previous = Some(image.clone());
+        self.previous = Some(scaled);
         self.frame += 1;
         Ok(frame)
     }
