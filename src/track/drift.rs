@@ -104,7 +104,7 @@ pub fn on_quantiles(f: &Field) -> Field {
 pub const ON_QUANTILES: (f64, f64) = (0.01, 0.99);
 
 /// Every this many pixels are read for [`ON_QUANTILES`].
-const QUANTILE_STRIDE: usize = 7;
+pub const QUANTILE_STRIDE: usize = 7;
 
 /// `f` at 1/`k` of its resolution: the mean of each k×k block (a partial block at the
 /// right and bottom edges averages what it has). Cheaper than the pyramid's blurred
