@@ -761,7 +761,7 @@ impl Tracker {
         shapes.extend(
             (1..=flat.len() as u32)
                 .filter(|l| !paired.contains(l))
-                .map(|l| Shape::Polygon(flat[l as usize - 1].ring.clone())),
+                .map(|l| Shape::Polygon(ring(l).to_vec())),
         );
         // Joining refines frame 0; an evolution that fails leaves the pieces as they are.
         let Ok((evolved, _, _)) = self.evolve(image, &shapes) else {
@@ -831,9 +831,8 @@ impl Tracker {
                 && before.is_none_or(|n| n - neck.narrow <= narrowing);
             // A cell picked up new two frames ago would be cells found as one in the
             // frame before ([`Tracker::found_as_one`]), not a division.
-            let seen = self.lineage.get(d.parent).is_some_and(|p| {
-                p.first + 2 <= t && !(p.parent == 0 && p.first > 0 && p.first + 2 == t)
-            });
+            let seen = self.lineage.get(d.parent).is_some_and(|p| p.first + 2 <= t)
+                && !self.found_as_one(d.parent, t - 1);
             if !(two && seen) {
                 continue;
             }
