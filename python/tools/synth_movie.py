@@ -18,8 +18,9 @@ one where two overlap), the same shapes that make the image; tracks are the runs
 in which a cell has pixels, parents the mother's track when it ends the frame before.
 
 usage: synth_movie.py FAMILY OUT_DIR [--seed N] [--frames T] [--size PX]
-       [--photons P] [--blur S] [--line L] [--widths MIN MAX]   (bacteria_phase renderings:
-       noisier, blurrier, no line between cells, thinner rods)
+       [--photons P] [--blur S] [--line L] [--widths MIN MAX] [--doubling MIN MAX]
+       (bacteria_phase renderings: noisier, blurrier, no line between cells, thinner
+       rods, a cell cycle of fewer frames)
        [--drift S]   (either family: a drifting stage, the whole field's random walk of S px a frame)
 """
 from __future__ import annotations
@@ -38,6 +39,8 @@ PHOTONS = 110.0
 BLUR = 1.1
 LINE = 0.32
 WIDTHS = (8.0, 10.0)
+# bacteria_phase: a cell cycle lasts between these many frames (--doubling).
+DOUBLING = (11.0, 14.0)
 # Both families: a drifting stage (--drift), px a frame of the whole field's random walk.
 DRIFT = 0.0
 
@@ -184,7 +187,7 @@ def bacteria_phase(seed, frames, size):
         lb = rng.uniform(17, 21)
         cells.append(dict(id=nid, pos=np.array([w / 2, h / 2]) + rng.uniform(-30, 30, 2),
                           ang=rng.uniform(0, np.pi), wid=rng.uniform(*WIDTHS), len=lb * rng.uniform(1.0, 1.9),
-                          ldiv=2 * lb * rng.uniform(0.94, 1.06), rate=np.log(2) / rng.uniform(11, 14),
+                          ldiv=2 * lb * rng.uniform(0.94, 1.06), rate=np.log(2) / rng.uniform(*DOUBLING),
                           parent=0, born=0))
         nid += 1
     relax(cells, rng, 50)
@@ -205,7 +208,7 @@ def bacteria_phase(seed, frames, size):
                             lb = c["len"] / 2
                             kids.append(dict(id=nid, pos=c["pos"] + sgn * d * c["len"] / 4, ang=c["ang"] + rng.normal(0, 0.03),
                                              wid=float(np.clip(c["wid"] + rng.normal(0, 0.2), *WIDTHS)), len=lb,
-                                             ldiv=2 * lb * rng.uniform(0.94, 1.06), rate=np.log(2) / rng.uniform(11, 14),
+                                             ldiv=2 * lb * rng.uniform(0.94, 1.06), rate=np.log(2) / rng.uniform(*DOUBLING),
                                              parent=c["id"], born=t))
                             nid += 1
                         events.append((t, c["id"], kids[0]["id"], kids[1]["id"]))
@@ -506,12 +509,14 @@ def main():
                     help="bacteria_phase: brightness of the line where two cells meet (0: none)")
     ap.add_argument("--widths", type=float, nargs=2, default=WIDTHS, metavar=("MIN", "MAX"),
                     help="bacteria_phase: range of rod widths, px")
+    ap.add_argument("--doubling", type=float, nargs=2, default=DOUBLING, metavar=("MIN", "MAX"),
+                    help="bacteria_phase: frames a cell cycle lasts (faster growth between frames)")
     ap.add_argument("--drift", type=float, default=DRIFT,
                     help="both: the whole field moves by a random walk of this many px a frame (0: still)")
     a = ap.parse_args()
     if a.photons <= 0 or a.blur < 0 or a.line < 0 or a.drift < 0 or not 2 <= a.widths[0] <= a.widths[1]:
         ap.error("need --photons > 0, --blur >= 0, --line >= 0, --drift >= 0 and --widths MIN MAX with 2 <= MIN <= MAX")
-    globals().update(GAP=a.gap, PHOTONS=a.photons, BLUR=a.blur, LINE=a.line, WIDTHS=tuple(a.widths), DRIFT=a.drift)
+    globals().update(GAP=a.gap, PHOTONS=a.photons, BLUR=a.blur, LINE=a.line, WIDTHS=tuple(a.widths), DOUBLING=tuple(a.doubling), DRIFT=a.drift)
     frames = a.frames or (50 if a.family == "bacteria_phase" else 60)
     size = a.size or (256 if a.family == "bacteria_phase" else 420)
     if frames < 2 or size < 64:
