@@ -15,8 +15,8 @@
 //! deepest dips is the contact. It is taken only where the frame's cells are rods
 //! (their median aspect at least [`super::neck::MIN_LOBE_ASPECT`]), the outline is much
 //! wider than they are ([`SIDE_WIDE`]), both dips are deep ([`SIDE_NOTCH`]) and each
-//! part is one rod of the frame's width ([`SIDE_PART_WIDE`]), with a seam between them
-//! ([`SIDE_LINE`]).
+//! part is one rod of the frame's width ([`SIDE_PART_WIDE`]) and of about the other's
+//! size ([`SIDE_SHARE`]), with a seam between them ([`SIDE_LINE`]).
 //!
 //! The pieces are not a division: of 22 such cuts that parted two cells on synthetic
 //! movies, 21 parted cells of different mothers that one outline had come to cover, so
@@ -47,6 +47,14 @@ pub const SIDE_PART_WIDE: f64 = 1.3;
 /// inside. On 24 side cuts of synthetic movies, the two that cut one cell
 /// had −0.05 and −0.04; 19 of the 22 that parted two cells had more than 0.
 pub const SIDE_LINE: f64 = 0.0;
+
+/// The smaller part at least this share of the larger's area: two cells read as one
+/// are each a cell, while a sliver that a crowded neighbour's outline spilled over, or
+/// the flank of a rod pressed out of shape, is not. Of 52 side cuts on 60 synthetic
+/// movies (most in colonies growing a cycle in 7–9 frames), 41 started a track that
+/// covered at most half of any true cell, 29 of them with shares 0.14–0.49; 10 of the 11
+/// that parted two cells had 0.53–0.95 (docs/decisions.md, 2026-12-06).
+pub const SIDE_SHARE: f64 = 0.5;
 
 /// The rod width of a frame's outlines `rings`: the lower median of their band widths,
 /// or `None` when they are not rods (their median aspect is under
@@ -117,8 +125,10 @@ pub fn side_cut(ring: &[Point], rod_width: f64, image: &Field) -> Option<(Vec<Po
         let (aspect, width, _) = elongation(p);
         signed_area(p) > 0.0 && aspect >= MIN_LOBE_ASPECT && width <= SIDE_PART_WIDE * rod_width
     };
+    let (sa, sb) = (signed_area(&a), signed_area(&b));
+    let alike = sa.min(sb) >= SIDE_SHARE * sa.max(sb);
     let seam = || septum(ring, &a, &b, ring[i], ring[j], image) > SIDE_LINE;
-    (one_rod(&a) && one_rod(&b) && seam()).then_some((a, b))
+    (one_rod(&a) && one_rod(&b) && alike && seam()).then_some((a, b))
 }
 
 #[cfg(test)]
@@ -137,13 +147,14 @@ mod tests {
     /// (centre lines 9 px apart), the lower one shifted right by `shift`: their union
     /// rasterised at a quarter pixel and outlined.
     fn pair(shift: f64) -> Vec<Point> {
+        stacked((10.0, 34.0), (10.0 + shift, 34.0 + shift))
+    }
+
+    /// [`pair`] with the rods' centre lines running over `top` and `bottom` (x ranges).
+    fn stacked(top: (f64, f64), bottom: (f64, f64)) -> Vec<Point> {
         let (top, bottom) = (
-            rod(Point::new(10.0, 20.0), Point::new(34.0, 20.0), 4.5),
-            rod(
-                Point::new(10.0 + shift, 29.0),
-                Point::new(34.0 + shift, 29.0),
-                4.5,
-            ),
+            rod(Point::new(top.0, 20.0), Point::new(top.1, 20.0), 4.5),
+            rod(Point::new(bottom.0, 29.0), Point::new(bottom.1, 29.0), 4.5),
         );
         let (w, h) = (240, 200);
         let labels: Vec<u32> = (0..w * h)
@@ -199,6 +210,35 @@ mod tests {
         // No seam between them in the image: one cell as far as it shows.
         let flat = Field::new(64, 48, vec![0.5; 64 * 48]);
         assert!(side_cut(&ring, w, &flat).is_none());
+    }
+
+    #[test]
+    fn a_sliver_beside_a_rod_is_no_cell_of_its_own() {
+        let w = 9.0 * 0.93;
+        // The image: dark inside `ring`, a faint seam along y = 24.5.
+        let seamed = |ring: &[Point]| {
+            Field::new(
+                64,
+                48,
+                (0..64 * 48)
+                    .map(|k| {
+                        let p = Point::new((k % 64) as f64 + 0.5, (k / 64) as f64 + 0.5);
+                        match (winding_number(ring, p) != 0, (p.y - 24.5).abs() < 1.0) {
+                            (false, _) => 1.0,
+                            (true, true) => 0.4,
+                            (true, false) => 0.0,
+                        }
+                    })
+                    .collect(),
+            )
+        };
+        // A shorter rod beside a long one, 0.61 of its area: two cells.
+        let two = stacked((10.0, 34.0), (16.0, 28.0));
+        assert!(side_cut(&two, w, &seamed(&two)).is_some());
+        // A stub of 0.42 of its area, as a crowded neighbour's outline leaves beside a
+        // rod: no cell, and the outline is not cut.
+        let stub = stacked((10.0, 34.0), (19.0, 25.0));
+        assert!(side_cut(&stub, w, &seamed(&stub)).is_none());
     }
 
     #[test]
