@@ -779,10 +779,16 @@ impl Tracker {
                 continue;
             }
             // One rod: its neck is measured, not cut, and bends gently (a waist, or a
-            // chord across a straight rod); two touching disks meet at a sharp notch:
-            // two nuclei, whatever the neck rule says of round lobes.
-            if matches!(neck::cut_or_measure(&r.ring, image), Err(Some(k)) if k.turn < neck::SMOOTH_TURN)
-            {
+            // chord across a straight rod), or it has none that leaves two lobes of a
+            // daughter's share (a straight rod's shortest chord runs near a cap); two
+            // touching disks meet at a sharp notch: two nuclei, whatever the neck rule
+            // says of round lobes.
+            let one_rod = match neck::cut_or_measure(&r.ring, image) {
+                Err(Some(k)) => k.turn < neck::SMOOTH_TURN,
+                Err(None) => true,
+                Ok(_) => false,
+            };
+            if one_rod {
                 one.insert(*a, r.ring.clone());
                 gone.insert(*b);
             }
@@ -1092,6 +1098,56 @@ mod tests {
         assert_eq!(frame, kept, "9 px away, more than a width: not the lobes");
         t.date(&mut frame, &[1], Point::new(9.0, 0.0));
         assert_eq!(frame.earlier.len(), 1);
+    }
+
+    #[test]
+    fn a_straight_rod_its_seeds_cut_in_two_on_frame_0_is_joined() {
+        // A dark rod tapering from 11 px wide to 9: evolved again as one, its shortest
+        // chord is near the thin end, where the lobe left is too small for a daughter,
+        // so it has no neck at all; it is one cell.
+        let (w, h) = (96usize, 48usize);
+        let mut ring = Vec::new();
+        for k in 0..=16 {
+            let a = -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
+            ring.push(Point::new(72.0 + 4.5 * a.cos(), 20.0 + 4.5 * a.sin()));
+        }
+        for k in 0..=16 {
+            let a = std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
+            ring.push(Point::new(16.0 + 5.5 * a.cos(), 20.0 + 5.5 * a.sin()));
+        }
+        let data = (0..w * h)
+            .map(|k| {
+                let p = Point::new((k % w) as f64 + 0.5, (k / w) as f64 + 0.5);
+                if crate::geometry::winding_number(&ring, p) != 0 {
+                    0.2
+                } else {
+                    0.8
+                }
+            })
+            .collect();
+        let image = Field::new(w, h, data);
+        let params = Params {
+            polarity: crate::evolution::Polarity::Dark,
+            ..Params::default()
+        };
+        let tracker = Tracker::new(TrackSettings::new(params), Vec::new());
+        let half = |x0: f64, x1: f64| {
+            Shape::Polygon(vec![
+                Point::new(x0, 18.0),
+                Point::new(x0, 22.0),
+                Point::new(x1, 22.0),
+                Point::new(x1, 18.0),
+            ])
+        };
+        let (mut pieces, _, model) = tracker
+            .evolve(&image, &[half(16.0, 42.0), half(46.0, 72.0)])
+            .unwrap();
+        assert_eq!(pieces.iter().flatten().count(), 2, "the seeds' two pieces");
+        let whole = neck::measure(&ring, &image);
+        assert!(whole.is_none(), "no neck: {whole:?}");
+        let joined = tracker.join_rods(&image, &mut pieces, model.as_deref().unwrap());
+        assert_eq!(joined.len(), 1);
+        assert_eq!(pieces.iter().flatten().count(), 1);
     }
 
     #[test]
