@@ -20,7 +20,7 @@ in which a cell has pixels, parents the mother's track when it ends the frame be
 usage: synth_movie.py FAMILY OUT_DIR [--seed N] [--frames T] [--size PX]
        [--photons P] [--blur S] [--line L] [--widths MIN MAX] [--doubling MIN MAX]
        (bacteria_phase renderings: noisier, blurrier, no line between cells, thinner
-       rods, a cell cycle of fewer frames)
+       rods, a cell cycle of more or fewer frames)
        [--drift S]   (either family: a drifting stage, the whole field's random walk of S px a frame)
 """
 from __future__ import annotations
@@ -510,12 +510,14 @@ def main():
     ap.add_argument("--widths", type=float, nargs=2, default=WIDTHS, metavar=("MIN", "MAX"),
                     help="bacteria_phase: range of rod widths, px")
     ap.add_argument("--doubling", type=float, nargs=2, default=DOUBLING, metavar=("MIN", "MAX"),
-                    help="bacteria_phase: frames a cell cycle lasts (faster growth between frames)")
+                    help="bacteria_phase: frames a cell cycle lasts (fewer: faster growth between frames)")
     ap.add_argument("--drift", type=float, default=DRIFT,
                     help="both: the whole field moves by a random walk of this many px a frame (0: still)")
     a = ap.parse_args()
-    if a.photons <= 0 or a.blur < 0 or a.line < 0 or a.drift < 0 or not 2 <= a.widths[0] <= a.widths[1]:
-        ap.error("need --photons > 0, --blur >= 0, --line >= 0, --drift >= 0 and --widths MIN MAX with 2 <= MIN <= MAX")
+    if (a.photons <= 0 or a.blur < 0 or a.line < 0 or a.drift < 0 or not 2 <= a.widths[0] <= a.widths[1]
+            or not 2 <= a.doubling[0] <= a.doubling[1]):
+        ap.error("need --photons > 0, --blur >= 0, --line >= 0, --drift >= 0, and --widths MIN MAX and "
+                 "--doubling MIN MAX each with 2 <= MIN <= MAX")
     globals().update(GAP=a.gap, PHOTONS=a.photons, BLUR=a.blur, LINE=a.line, WIDTHS=tuple(a.widths), DOUBLING=tuple(a.doubling), DRIFT=a.drift)
     frames = a.frames or (50 if a.family == "bacteria_phase" else 60)
     size = a.size or (256 if a.family == "bacteria_phase" else 420)

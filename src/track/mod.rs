@@ -124,6 +124,11 @@ pub const JOIN_ROD_WIDE: f64 = 1.3;
 /// not spread over a neighbour or shrink away).
 pub const JOIN_ROD_AREA: f64 = 0.8;
 
+/// ... and, where the one outline has no neck measured at all, when the smaller piece
+/// has at least this share of the larger's area: the two halves a rod's seeds cut it
+/// into, not a rod and a small cell or stub at its end.
+pub const JOIN_NO_NECK_SHARE: f64 = 0.5;
+
 /// A frame after the first evolves through the coarse pyramid levels only when the
 /// median half-width (2A/P) of the last frame's cells is at least this many pixels (2.35
 /// at half resolution). Synthetic rods 6–7.5 px wide, whose outlines' median is 4.2–4.5
@@ -719,7 +724,9 @@ impl Tracker {
     /// beside it; when what comes out is one outline
     /// whose neck is not cut ([`neck::cut_or_measure`]) and bends gently
     /// ([`neck::SMOOTH_TURN`]), the pair is that one cell (two touching disks, meeting
-    /// at a sharp notch, stay two). A later
+    /// at a sharp notch, stay two). So is one with no neck at all when its pieces are
+    /// of one size ([`JOIN_NO_NECK_SHARE`], a rod's two halves) and it keeps off the
+    /// frame's edge (where a neck is not measured). A later
     /// frame asks the same of every cell: a mother a frame or two before her division,
     /// her waist seeded on both sides, was two tracks from frame 0 and her division was
     /// never seen.
@@ -745,6 +752,7 @@ impl Tracker {
         // Judged on the pieces before pairing: a half that touches a neighbour along a
         // longer edge than its other half still pairs with its other half.
         let ring = |l: u32| flat[l as usize - 1].ring.as_slice();
+        let ring_area = |l: u32| flat[l as usize - 1].area;
         let pairs = partition::touching_pairs(&labels, model, |a, b| {
             let (aspect, across, _) = neck::elongation_of(&[ring(a), ring(b)]);
             aspect >= neck::MIN_LOBE_ASPECT
@@ -779,13 +787,19 @@ impl Tracker {
                 continue;
             }
             // One rod: its neck is measured, not cut, and bends gently (a waist, or a
-            // chord across a straight rod), or it has none that leaves two lobes of a
-            // daughter's share (a straight rod's shortest chord runs near a cap); two
-            // touching disks meet at a sharp notch: two nuclei, whatever the neck rule
-            // says of round lobes.
+            // chord across a straight rod); two touching disks meet at a sharp notch:
+            // two nuclei, whatever the neck rule says of round lobes. No neck measured
+            // is a rod too when the pieces were its two halves and it is off the edge:
+            // its shortest chord ran near a cap and left a lobe under a daughter's
+            // share. A small piece at a rod's end, or a pair cut by the frame's edge,
+            // has no neck measured either, and is not judged so.
             let one_rod = match neck::cut_or_measure(&r.ring, image) {
                 Err(Some(k)) => k.turn < neck::SMOOTH_TURN,
-                Err(None) => true,
+                Err(None) => {
+                    let (sa, sb) = (ring_area(*a), ring_area(*b));
+                    sa.min(sb) >= JOIN_NO_NECK_SHARE * sa.max(sb)
+                        && r.ring.iter().all(|&p| neck::off_edge(p, image))
+                }
                 Ok(_) => false,
             };
             if one_rod {
@@ -1102,18 +1116,18 @@ mod tests {
 
     #[test]
     fn a_straight_rod_its_seeds_cut_in_two_on_frame_0_is_joined() {
-        // A dark rod tapering from 11 px wide to 9: evolved again as one, its shortest
+        // A dark rod tapering from 12 px wide to 8: evolved again as one, its shortest
         // chord is near the thin end, where the lobe left is too small for a daughter,
         // so it has no neck at all; it is one cell.
         let (w, h) = (96usize, 48usize);
         let mut ring = Vec::new();
         for k in 0..=16 {
             let a = -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
-            ring.push(Point::new(72.0 + 4.5 * a.cos(), 20.0 + 4.5 * a.sin()));
+            ring.push(Point::new(72.0 + 4.0 * a.cos(), 20.0 + 4.0 * a.sin()));
         }
         for k in 0..=16 {
             let a = std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
-            ring.push(Point::new(16.0 + 5.5 * a.cos(), 20.0 + 5.5 * a.sin()));
+            ring.push(Point::new(16.0 + 6.0 * a.cos(), 20.0 + 6.0 * a.sin()));
         }
         let data = (0..w * h)
             .map(|k| {
@@ -1143,11 +1157,11 @@ mod tests {
             .evolve(&image, &[half(16.0, 42.0), half(46.0, 72.0)])
             .unwrap();
         assert_eq!(pieces.iter().flatten().count(), 2, "the seeds' two pieces");
-        let whole = neck::measure(&ring, &image);
-        assert!(whole.is_none(), "no neck: {whole:?}");
         let joined = tracker.join_rods(&image, &mut pieces, model.as_deref().unwrap());
         assert_eq!(joined.len(), 1);
         assert_eq!(pieces.iter().flatten().count(), 1);
+        let k = neck::measure(&joined[0], &image);
+        assert!(k.is_none(), "the one outline has no neck: {k:?}");
     }
 
     #[test]

@@ -232,12 +232,12 @@ mod tests {
                     .collect(),
             )
         };
-        // A shorter rod beside a long one, 0.61 of its area: two cells.
-        let two = stacked((10.0, 34.0), (16.0, 28.0));
+        // A shorter rod beside a long one, 0.66 of its area: two cells.
+        let two = stacked((10.0, 50.0), (16.0, 40.0));
         assert!(side_cut(&two, w, &seamed(&two)).is_some());
-        // A stub of 0.42 of its area, as a crowded neighbour's outline leaves beside a
-        // rod: no cell, and the outline is not cut.
-        let stub = stacked((10.0, 34.0), (19.0, 25.0));
+        // A part of 0.41 of its area (a rod itself, aspect 2.3), as a crowded
+        // neighbour's outline leaves beside a rod: no cell, and the outline is not cut.
+        let stub = stacked((10.0, 50.0), (16.0, 28.0));
         assert!(side_cut(&stub, w, &seamed(&stub)).is_none());
     }
 
