@@ -998,15 +998,19 @@ mod tests {
 
     /// A rod along x from `x0` to `x1` at y = 20, `width` across, as a ring.
     fn rod(x0: f64, x1: f64, width: f64) -> Vec<Point> {
-        let r = 0.5 * width;
+        tapered(x0, 0.5 * width, x1, 0.5 * width)
+    }
+
+    /// A rod along x at y = 20 with caps of radius `r0` at `x0` and `r1` at `x1`.
+    fn tapered(x0: f64, r0: f64, x1: f64, r1: f64) -> Vec<Point> {
         let mut ring = Vec::new();
         for k in 0..=16 {
             let a = -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
-            ring.push(Point::new(x1 + r * a.cos(), 20.0 + r * a.sin()));
+            ring.push(Point::new(x1 + r1 * a.cos(), 20.0 + r1 * a.sin()));
         }
         for k in 0..=16 {
             let a = std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
-            ring.push(Point::new(x0 + r * a.cos(), 20.0 + r * a.sin()));
+            ring.push(Point::new(x0 + r0 * a.cos(), 20.0 + r0 * a.sin()));
         }
         ring
     }
@@ -1120,15 +1124,7 @@ mod tests {
         // chord is near the thin end, where the lobe left is too small for a daughter,
         // so it has no neck at all; it is one cell.
         let (w, h) = (96usize, 48usize);
-        let mut ring = Vec::new();
-        for k in 0..=16 {
-            let a = -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
-            ring.push(Point::new(72.0 + 4.0 * a.cos(), 20.0 + 4.0 * a.sin()));
-        }
-        for k in 0..=16 {
-            let a = std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / 16.0;
-            ring.push(Point::new(16.0 + 6.0 * a.cos(), 20.0 + 6.0 * a.sin()));
-        }
+        let ring = tapered(16.0, 6.0, 72.0, 4.0);
         let data = (0..w * h)
             .map(|k| {
                 let p = Point::new((k % w) as f64 + 0.5, (k / w) as f64 + 0.5);

@@ -121,14 +121,14 @@ pub fn side_cut(ring: &[Point], rod_width: f64, image: &Field) -> Option<(Vec<Po
         return None;
     }
     let (a, b) = lobes(ring, i.min(j), i.max(j))?;
-    let one_rod = |p: &[Point]| {
-        let (aspect, width, _) = elongation(p);
-        signed_area(p) > 0.0 && aspect >= MIN_LOBE_ASPECT && width <= SIDE_PART_WIDE * rod_width
-    };
     let (sa, sb) = (signed_area(&a), signed_area(&b));
+    let one_rod = |p: &[Point], area: f64| {
+        let (aspect, width, _) = elongation(p);
+        area > 0.0 && aspect >= MIN_LOBE_ASPECT && width <= SIDE_PART_WIDE * rod_width
+    };
     let alike = sa.min(sb) >= SIDE_SHARE * sa.max(sb);
     let seam = || septum(ring, &a, &b, ring[i], ring[j], image) > SIDE_LINE;
-    (one_rod(&a) && one_rod(&b) && alike && seam()).then_some((a, b))
+    (one_rod(&a, sa) && one_rod(&b, sb) && alike && seam()).then_some((a, b))
 }
 
 #[cfg(test)]
@@ -169,26 +169,31 @@ mod tests {
         densified(&ring)
     }
 
-    #[test]
-    fn two_rods_side_by_side_are_cut_along_their_contact_one_rod_is_not() {
-        let w = 9.0 * 0.93; // a capsule's band width, a little under its diameter
-        let ring = pair(4.0);
-        // The cells dark, the background bright, and a faint seam where they touch.
-        let seamed = Field::new(
+    /// A 64×48 image dark inside `ring`, bright outside, with a faint seam along y = 24.5
+    /// (where [`stacked`] rods touch).
+    fn seamed(ring: &[Point]) -> Field {
+        Field::new(
             64,
             48,
             (0..64 * 48)
                 .map(|k| {
                     let p = Point::new((k % 64) as f64 + 0.5, (k / 64) as f64 + 0.5);
-                    match (winding_number(&ring, p) != 0, (p.y - 24.5).abs() < 1.0) {
+                    match (winding_number(ring, p) != 0, (p.y - 24.5).abs() < 1.0) {
                         (false, _) => 1.0,
                         (true, true) => 0.4,
                         (true, false) => 0.0,
                     }
                 })
                 .collect(),
-        );
-        let img = &seamed;
+        )
+    }
+
+    #[test]
+    fn two_rods_side_by_side_are_cut_along_their_contact_one_rod_is_not() {
+        let w = 9.0 * 0.93; // a capsule's band width, a little under its diameter
+        let ring = pair(4.0);
+        // The cells dark, the background bright, and a faint seam where they touch.
+        let img = &seamed(&ring);
         let (a, b) = side_cut(&ring, w, img).expect("a pair side by side");
         let ys = |p: &[Point]| p.iter().map(|q| q.y).sum::<f64>() / p.len() as f64;
         let (ya, yb) = (ys(&a), ys(&b));
@@ -215,23 +220,6 @@ mod tests {
     #[test]
     fn a_sliver_beside_a_rod_is_no_cell_of_its_own() {
         let w = 9.0 * 0.93;
-        // The image: dark inside `ring`, a faint seam along y = 24.5.
-        let seamed = |ring: &[Point]| {
-            Field::new(
-                64,
-                48,
-                (0..64 * 48)
-                    .map(|k| {
-                        let p = Point::new((k % 64) as f64 + 0.5, (k / 64) as f64 + 0.5);
-                        match (winding_number(ring, p) != 0, (p.y - 24.5).abs() < 1.0) {
-                            (false, _) => 1.0,
-                            (true, true) => 0.4,
-                            (true, false) => 0.0,
-                        }
-                    })
-                    .collect(),
-            )
-        };
         // A shorter rod beside a long one, 0.66 of its area: two cells.
         let two = stacked((10.0, 50.0), (16.0, 40.0));
         assert!(side_cut(&two, w, &seamed(&two)).is_some());
