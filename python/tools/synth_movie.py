@@ -18,9 +18,9 @@ one where two overlap), the same shapes that make the image; tracks are the runs
 in which a cell has pixels, parents the mother's track when it ends the frame before.
 
 usage: synth_movie.py FAMILY OUT_DIR [--seed N] [--frames T] [--size PX]
-       [--photons P] [--blur S] [--line L] [--widths MIN MAX] [--doubling MIN MAX]
+       [--photons P] [--blur S] [--line L] [--widths MIN MAX] [--doubling MIN MAX] [--waist W]
        (bacteria_phase renderings: noisier, blurrier, no line between cells, thinner
-       rods, a cell cycle of more or fewer frames)
+       rods, a cell cycle of more or fewer frames, a shallower waist)
        [--drift S]   (either family: a drifting stage, the whole field's random walk of S px a frame)
 """
 from __future__ import annotations
@@ -41,6 +41,9 @@ LINE = 0.32
 WIDTHS = (8.0, 10.0)
 # bacteria_phase: a cell cycle lasts between these many frames (--doubling).
 DOUBLING = (11.0, 14.0)
+# bacteria_phase: how deep the mother's waist gets before she divides (--waist), a share
+# of her radius: 0 is a rod that parts with no constriction.
+WAIST = 0.45
 # Both families: a drifting stage (--drift), px a frame of the whole field's random walk.
 DRIFT = 0.0
 
@@ -223,7 +226,7 @@ def bacteria_phase(seed, frames, size):
         def sd(xx, yy, c):
             # The waist narrows over the last part of the cycle (the septum forming).
             prog = np.clip((c["len"] / c["ldiv"] - 0.85) / 0.15, 0, 1)
-            return capsule_sd(xx, yy, c["pos"], c["ang"], c["len"], c["wid"], 0.45 * prog)
+            return capsule_sd(xx, yy, c["pos"], c["ang"], c["len"], c["wid"], WAIST * prog)
 
         lab, cov = rasterise(h, w, cells, sd, lambda c: c["len"] / 2 + 3)
         labs.append(lab)
@@ -511,14 +514,17 @@ def main():
                     help="bacteria_phase: range of rod widths, px")
     ap.add_argument("--doubling", type=float, nargs=2, default=DOUBLING, metavar=("MIN", "MAX"),
                     help="bacteria_phase: frames a cell cycle lasts (fewer: faster growth between frames)")
+    ap.add_argument("--waist", type=float, default=WAIST,
+                    help="bacteria_phase: depth of the mother's waist before she divides, a share of her radius (0: none)")
     ap.add_argument("--drift", type=float, default=DRIFT,
                     help="both: the whole field moves by a random walk of this many px a frame (0: still)")
     a = ap.parse_args()
     if (a.photons <= 0 or a.blur < 0 or a.line < 0 or a.drift < 0 or not 2 <= a.widths[0] <= a.widths[1]
-            or not 2 <= a.doubling[0] <= a.doubling[1]):
+            or not 2 <= a.doubling[0] <= a.doubling[1] or not 0 <= a.waist < 1):
         ap.error("need --photons > 0, --blur >= 0, --line >= 0, --drift >= 0, and --widths MIN MAX and "
-                 "--doubling MIN MAX each with 2 <= MIN <= MAX")
-    globals().update(GAP=a.gap, PHOTONS=a.photons, BLUR=a.blur, LINE=a.line, WIDTHS=tuple(a.widths), DOUBLING=tuple(a.doubling), DRIFT=a.drift)
+                 "--doubling MIN MAX each with 2 <= MIN <= MAX, and 0 <= --waist < 1")
+    globals().update(GAP=a.gap, PHOTONS=a.photons, BLUR=a.blur, LINE=a.line, WIDTHS=tuple(a.widths), DOUBLING=tuple(a.doubling),
+                     WAIST=a.waist, DRIFT=a.drift)
     frames = a.frames or (50 if a.family == "bacteria_phase" else 60)
     size = a.size or (256 if a.family == "bacteria_phase" else 420)
     if frames < 2 or size < 64:

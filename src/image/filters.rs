@@ -165,41 +165,50 @@ fn extreme_1d(
     let item = |i: usize| -> Option<&[f32]> {
         (i >= r && i - r < n).then(|| &src[(i - r) * width..(i - r + 1) * width])
     };
-    ahead.clear();
-    ahead.resize(padded * width, identity);
-    behind.clear();
-    behind.resize(padded * width, identity);
-    for i in 0..padded {
-        let (cur, prev) = (i * width, i.checked_sub(1).filter(|_| i % k != 0));
-        if let Some(v) = item(i) {
-            ahead[cur..cur + width].copy_from_slice(v);
+    // Each item's values as whole slices (split, zipped): bounds checked once a row, so
+    // the element-wise picks vectorise.
+    let merge = |into: &mut [f32], from: &[f32]| {
+        for (c, &q) in into.iter_mut().zip(from) {
+            *c = pick(*c, q);
         }
-        if let Some(p) = prev {
-            for j in 0..width {
-                ahead[cur + j] = pick(ahead[cur + j], ahead[p * width + j]);
-            }
+    };
+    ahead.clear();
+    ahead.reserve(padded * width);
+    for i in 0..padded {
+        let cur = ahead.len();
+        match item(i) {
+            Some(v) => ahead.extend_from_slice(v),
+            None => ahead.resize(cur + width, identity),
+        }
+        if i % k != 0 {
+            let (before, now) = ahead.split_at_mut(cur);
+            merge(now, &before[cur - width..]);
         }
     }
+    behind.clear();
+    behind.resize(padded * width, identity);
     for i in (0..padded).rev() {
         let cur = i * width;
         if let Some(v) = item(i) {
             behind[cur..cur + width].copy_from_slice(v);
         }
         if (i + 1) % k != 0 && i + 1 < padded {
-            for j in 0..width {
-                behind[cur + j] = pick(behind[cur + j], behind[cur + width + j]);
-            }
+            let (now, after) = behind.split_at_mut(cur + width);
+            merge(&mut now[cur..], &after[..width]);
         }
     }
     // Window of output item o is padded items [o, o + 2r]: behind[o] covers to its
     // block's end, ahead[o + 2r] from that block's start (the two overlap or meet).
     out.clear();
-    out.resize(n * width, identity);
+    out.reserve(n * width);
     for o in 0..n {
         let (b, a) = (o * width, (o + 2 * r) * width);
-        for j in 0..width {
-            out[o * width + j] = pick(behind[b + j], ahead[a + j]);
-        }
+        out.extend(
+            behind[b..b + width]
+                .iter()
+                .zip(&ahead[a..a + width])
+                .map(|(&x, &y)| pick(x, y)),
+        );
     }
 }
 

@@ -21,20 +21,59 @@ pub fn half_width(image: &Field, model: &IntensityModel) -> f64 {
     let (w, h) = (image.width, image.height);
     let t = model.threshold() as f32;
     let bright = model.object >= model.background;
-    let inside = |x: usize, y: usize| (image.at(x, y) > t) == bright;
+    // A row of inside flags at a time, compared with its right neighbours and the row
+    // above: whole-row loops, no per-pixel lookups.
+    let (mut row, mut above) = (vec![false; w], vec![false; w]);
     let (mut area, mut perimeter) = (0u64, 0u64);
     for y in 0..h {
-        for x in 0..w {
-            let a = inside(x, y);
-            area += a as u64;
-            if x + 1 < w && a != inside(x + 1, y) {
-                perimeter += 1;
-            }
-            if y + 1 < h && a != inside(x, y + 1) {
-                perimeter += 1;
-            }
+        for (a, &v) in row.iter_mut().zip(&image.data[y * w..(y + 1) * w]) {
+            *a = (v > t) == bright;
         }
+        area += row.iter().filter(|&&a| a).count() as u64;
+        perimeter += row.windows(2).filter(|p| p[0] != p[1]).count() as u64;
+        if y > 0 {
+            perimeter += row.iter().zip(&above).filter(|(a, b)| a != b).count() as u64;
+        }
+        std::mem::swap(&mut row, &mut above);
     }
     // Pixel sides overestimate a smooth boundary's length by about 4/π.
     (2.0 * area as f64 / (perimeter.max(1) as f64 * std::f64::consts::FRAC_PI_4)).max(1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn half_width_counts_the_area_and_the_pixel_sides_of_the_object_side() {
+        // Two bright blocks, one at the image's edge (its sides there are not counted),
+        // one inside with a dark pixel in it.
+        let (w, h) = (9, 7);
+        let mut data = vec![0.0f32; w * h];
+        for y in 0..3 {
+            for x in 0..2 {
+                data[y * w + x] = 1.0;
+            }
+        }
+        for y in 2..6 {
+            for x in 4..8 {
+                data[y * w + x] = 1.0;
+            }
+        }
+        data[3 * w + 5] = 0.0;
+        let model = IntensityModel {
+            object: 1.0,
+            background: 0.0,
+        };
+        // Area 6 + 15 = 21; sides 2 + 3 of the edge block, 16 + 4 of the other.
+        let expected = 2.0 * 21.0 / (25.0 * std::f64::consts::FRAC_PI_4);
+        assert!((half_width(&Field::new(w, h, data.clone()), &model) - expected).abs() < 1e-12);
+        // Dark objects: the same count on the other side of the level.
+        let dark = IntensityModel {
+            object: 0.0,
+            background: 1.0,
+        };
+        let expected = 2.0 * (63.0 - 21.0) / (25.0 * std::f64::consts::FRAC_PI_4);
+        assert!((half_width(&Field::new(w, h, data), &dark) - expected).abs() < 1e-12);
+    }
 }
