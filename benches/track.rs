@@ -4,8 +4,8 @@
 //! (`Tracker::step`, the same path as `topocontour track`). Prints the CPU time per frame
 //! after the first, mean and median (the first frame places automatic seeds over the
 //! whole image; later ones start from the contours before; from frame 13 on, cells
-//! touch), the tracks found, and the peak resident memory (after every run: the runs
-//! are alike, so it is one run's).
+//! touch), the tracks found, and, once after all runs, the peak resident memory (the
+//! runs are alike, so it is one run's).
 //!
 //! `cargo bench --bench track` (`-- FRAMES` for another length, default 20; `-- --runs N`
 //! tracks the movie N times, default 3, and prints each run and the quietest).
@@ -100,7 +100,11 @@ fn main() {
     let runs: usize = args
         .iter()
         .position(|a| a == "--runs")
-        .and_then(|i| args.get(i + 1)?.parse().ok())
+        .map(|i| {
+            args.get(i + 1)
+                .and_then(|v| v.parse().ok())
+                .expect("--runs takes a whole number of runs")
+        })
         .unwrap_or(3)
         .max(1);
     let frames: usize = args

@@ -20,7 +20,7 @@ in which a cell has pixels, parents the mother's track when it ends the frame be
 usage: synth_movie.py FAMILY OUT_DIR [--seed N] [--frames T] [--size PX]
        [--photons P] [--blur S] [--line L] [--widths MIN MAX] [--doubling MIN MAX] [--waist W]
        (bacteria_phase renderings: noisier, blurrier, no line between cells, thinner
-       rods, a cell cycle of more or fewer frames, a shallower waist)
+       rods, a cell cycle of more or fewer frames, another depth of waist)
        [--drift S]   (either family: a drifting stage, the whole field's random walk of S px a frame)
 """
 from __future__ import annotations

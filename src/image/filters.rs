@@ -165,7 +165,7 @@ fn extreme_1d(
     let item = |i: usize| -> Option<&[f32]> {
         (i >= r && i - r < n).then(|| &src[(i - r) * width..(i - r + 1) * width])
     };
-    // Each item's values as whole slices (split, zipped): bounds checked once a row, so
+    // Each item's values as whole slices (split, zipped): bounds checked once an item, so
     // the element-wise picks vectorise.
     let merge = |into: &mut [f32], from: &[f32]| {
         for (c, &q) in into.iter_mut().zip(from) {

@@ -74,6 +74,18 @@ mod tests {
             background: 1.0,
         };
         let expected = 2.0 * (63.0 - 21.0) / (25.0 * std::f64::consts::FRAC_PI_4);
-        assert!((half_width(&Field::new(w, h, data), &dark) - expected).abs() < 1e-12);
+        assert!((half_width(&Field::new(w, h, data.clone()), &dark) - expected).abs() < 1e-12);
+        // The inner block moved into the far corner: its right and bottom sides, on the
+        // last column and row, are not counted either (area 21; sides 5 + 8 + 4).
+        let mut corner = vec![0.0f32; w * h];
+        for y in 0..h {
+            for x in 0..w {
+                let edge_block = y < 3 && x < 2;
+                let far_block = y >= 3 && x >= 5 && (x, y) != (6, 4);
+                corner[y * w + x] = if edge_block || far_block { 1.0 } else { 0.0 };
+            }
+        }
+        let expected = 2.0 * 21.0 / (17.0 * std::f64::consts::FRAC_PI_4);
+        assert!((half_width(&Field::new(w, h, corner), &model) - expected).abs() < 1e-12);
     }
 }
