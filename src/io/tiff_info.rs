@@ -255,14 +255,17 @@ pub(crate) fn decode_current<R: std::io::Read + std::io::Seek>(
     let values: Vec<f32> = match decoded {
         DecodingResult::U8(v) => v.iter().map(|&x| x as f32 / 255.0).collect(),
         DecodingResult::U16(v) => v.iter().map(|&x| x as f32 / 65535.0).collect(),
+        // Signed 8 and 16 bit: their type's range, as the unsigned ones.
+        DecodingResult::I8(v) => v.iter().map(|&x| (x as f32 + 128.0) / 255.0).collect(),
+        DecodingResult::I16(v) => v.iter().map(|&x| (x as f32 + 32768.0) / 65535.0).collect(),
+        // Wider integers: their own range, as floats (no camera fills 32 bits).
+        DecodingResult::U32(v) => float_samples(v.iter().map(|&x| x as f64)),
+        DecodingResult::U64(v) => float_samples(v.iter().map(|&x| x as f64)),
+        DecodingResult::I32(v) => float_samples(v.iter().map(|&x| x as f64)),
+        DecodingResult::I64(v) => float_samples(v.iter().map(|&x| x as f64)),
+        DecodingResult::F16(v) => float_samples(v.iter().map(|&x| x.to_f64())),
         DecodingResult::F32(v) => float_samples(v.iter().map(|&x| x as f64)),
         DecodingResult::F64(v) => float_samples(v.iter().copied()),
-        _ => {
-            return Err(err(format!(
-                "page {}: this sample format is not supported",
-                page + 1
-            )))
-        }
     };
     let n = w as usize * h as usize;
     if values.len() < n * channels {
@@ -283,4 +286,53 @@ pub(crate) fn decode_current<R: std::io::Read + std::io::Seek>(
         })
         .collect();
     Ok(Field::new(w as usize, h as usize, data))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tiff::encoder::{colortype, TiffEncoder};
+
+    /// A 4 × 2 page of `T`'s samples `v` as TIFF bytes.
+    fn page<T: colortype::ColorType>(v: &[T::Inner]) -> Vec<u8>
+    where
+        [T::Inner]: tiff::encoder::TiffValue,
+    {
+        let mut bytes = Cursor::new(Vec::new());
+        TiffEncoder::new(&mut bytes)
+            .unwrap()
+            .write_image::<T>(4, 2, v)
+            .unwrap();
+        bytes.into_inner()
+    }
+
+    #[test]
+    fn signed_and_wide_integer_pages_decode_into_the_unit_range() {
+        let read = |bytes: Vec<u8>| decode_page(&bytes, "page.tif", 0).unwrap().data;
+        // Signed 16 bit: the type's range, its lowest value black, its highest white.
+        let v = read(page::<colortype::GrayI16>(&[
+            i16::MIN,
+            -1,
+            0,
+            100,
+            4095,
+            i16::MAX,
+            0,
+            0,
+        ]));
+        assert_eq!(v[0], 0.0);
+        assert_eq!(v[5], 1.0);
+        assert!(v[2] > v[1] && v[3] > v[2] && v[4] > v[3]);
+        let v = read(page::<colortype::GrayI8>(&[-128, 0, 127, 0, 0, 0, 0, 0]));
+        assert_eq!((v[0], v[2]), (0.0, 1.0));
+        // 32 bit: the page's own range.
+        let v = read(page::<colortype::Gray32>(&[
+            100, 200, 300, 100, 100, 100, 100, 100,
+        ]));
+        assert_eq!((v[0], v[1], v[2]), (0.0, 0.5, 1.0));
+        let v = read(page::<colortype::GrayI32>(&[-5, 5, 0, 0, 0, 0, 0, 0]));
+        assert_eq!((v[0], v[1], v[2]), (0.0, 1.0, 0.5));
+        let v = read(page::<colortype::Gray64>(&[0, 1 << 40, 0, 0, 0, 0, 0, 0]));
+        assert_eq!((v[0], v[1]), (0.0, 1.0));
+    }
 }
