@@ -1,5 +1,8 @@
-//! NumPy arrays in and out: a 2-D image (uint8, uint16 or float32) copied into the
-//! engine's samples while the GIL is held, fields and rasters handed back as arrays.
+//! NumPy arrays in and out: a 2-D image copied into the engine's samples while the GIL is
+//! held, fields and rasters handed back as arrays. An image's dtype is read as a TIFF
+//! page of that sample type is (`topocontour::io`): 8 and 16 bit integers, signed or
+//! not, by their type's range (a signed one shifted into the unsigned one, exactly);
+//! wider integers and every float as float32, by their own range.
 
 use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyTypeError, PyValueError};
@@ -46,20 +49,33 @@ pub fn image_samples(image: &Bound<'_, PyAny>) -> PyResult<(usize, usize, Owned)
         )));
     }
     let (height, width) = (shape[0], shape[1]);
-    let owned = if let Ok(a) = image.cast::<PyArray2<u8>>() {
-        Owned::U8(a.readonly().as_array().iter().copied().collect())
-    } else if let Ok(a) = image.cast::<PyArray2<u16>>() {
-        Owned::U16(a.readonly().as_array().iter().copied().collect())
-    } else if let Ok(a) = image.cast::<PyArray2<f32>>() {
-        Owned::F32(a.readonly().as_array().iter().copied().collect())
-    } else {
+    // Every sample of `$t` through `$f` into the owned kind `$k`.
+    macro_rules! read {
+        ($t:ty, $k:ident, $f:expr) => {
+            image
+                .cast::<PyArray2<$t>>()
+                .ok()
+                .map(|a| Owned::$k(a.readonly().as_array().iter().map($f).collect()))
+        };
+    }
+    let owned = read!(u8, U8, |&x| x)
+        .or_else(|| read!(u16, U16, |&x| x))
+        .or_else(|| read!(f32, F32, |&x| x))
+        .or_else(|| read!(i8, U8, |&x| (x as i16 + 128) as u8))
+        .or_else(|| read!(i16, U16, |&x| (x as i32 + 32768) as u16))
+        .or_else(|| read!(f64, F32, |&x| x as f32))
+        .or_else(|| read!(u32, F32, |&x| x as f32))
+        .or_else(|| read!(i32, F32, |&x| x as f32))
+        .or_else(|| read!(u64, F32, |&x| x as f32))
+        .or_else(|| read!(i64, F32, |&x| x as f32));
+    let Some(owned) = owned else {
         let dtype = array
             .dtype()
             .str()
             .map(|s| s.to_string())
             .unwrap_or_default();
         return Err(PyValueError::new_err(format!(
-            "images of dtype {dtype} are not supported: give uint8, uint16 or float32 (convert with .astype)"
+            "images of dtype {dtype} are not supported: give integers or floats (convert with .astype)"
         )));
     };
     Ok((width, height, owned))

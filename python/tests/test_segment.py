@@ -128,11 +128,24 @@ def test_bad_settings_raise_the_cli_message(tmp_path, cli, keywords, flags):
     assert str(e.value) == cli_message(err)
 
 
+def test_every_integer_and_float_dtype_reads_as_the_tiff_reader_does():
+    img = discs()  # uint8
+    run = lambda a: tc.segment(a, wrap=4, object="dark").to_json()
+    # Signed 8 and 16 bit: their type's range, shifted exactly onto the unsigned one.
+    assert run((img.astype(np.int16) - 128).astype(np.int8)) == run(img)
+    wide = img.astype(np.uint16) * 257
+    assert run((wide.astype(np.int32) - 32768).astype(np.int16)) == run(wide)
+    # Wider integers and float64: as float32, by their own range.
+    as_f32 = run(img.astype(np.float32))
+    for dtype in (np.float64, np.int32, np.uint32, np.int64, np.uint64):
+        assert run(img.astype(dtype)) == as_f32, dtype
+
+
 def test_array_errors_are_one_line_value_errors():
     img = discs()
     cases = [
-        (img.astype(np.float64), "images of dtype float64 are not supported: give uint8, uint16 or float32 (convert with .astype)"),
-        (img.astype(np.int32), "images of dtype int32 are not supported: give uint8, uint16 or float32 (convert with .astype)"),
+        (img > 100, "images of dtype bool are not supported: give integers or floats (convert with .astype)"),
+        (img.astype(np.complex64), "images of dtype complex64 are not supported: give integers or floats (convert with .astype)"),
         (np.stack([img] * 3, axis=-1), "the image must be a 2-D array (height, width), got shape (120, 160, 3)"),
         (img[0], "the image must be a 2-D array (height, width), got shape (160,)"),
         (np.zeros((0, 5), np.uint8), "array has no pixels (5×0)"),

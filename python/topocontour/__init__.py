@@ -136,8 +136,8 @@ def segment(
     name: Optional[str] = None,
     **params: Any,
 ) -> Result:
-    """Segments a 2-D image: a NumPy array (uint8, uint16 or float32, as a file with
-    those samples reads) or the path of an image file.
+    """Segments a 2-D image: a NumPy array (any integer or float dtype but float16, as a
+    TIFF page with those samples reads) or the path of an image file.
 
     ``seeds`` are (x, y, r) disks, ``wrap`` a margin, ``rects`` (x0, y0, x1, y1)
     rectangles, ``auto_seeds`` one seed per object found; ``mode`` the engine (``None``:
@@ -223,7 +223,7 @@ def track(
 ) -> Tracks:
     """Tracks cells through a movie, as ``topocontour track`` does: ``movie`` is a
     multi-page TIFF or a folder of frames, or an array of frames (frames, height, width;
-    uint8, uint16 or float32), each normalised by its own quantiles as the CLI reads a
+    any integer or float dtype but float16), each normalised by its own quantiles as the CLI reads a
     movie. Shapes (``seeds``, ``wrap``, ``rects``) are on frame 0 (automatic seeds
     without any); ``params`` are ``track``'s other flags in snake case (``shrink``,
     ``levels``, ``no_new_cells``, …; see :func:`track_flags`). The :class:`Tracks` holds

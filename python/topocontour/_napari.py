@@ -65,15 +65,16 @@ def seeds_of_points(points, sizes=None, radius=4.0):
 
 
 def _image_2d(data):
-    """The image as the engine takes it: 2-D; uint8, uint16 or float32 (other dtypes
-    converted), RGB to its luminance as the engine's loader reads colour files."""
+    """The image as the engine takes it: 2-D; integers or floats (float16 and other
+    dtypes converted to float32), RGB to its luminance as the engine's loader reads
+    colour files."""
     a = np.asarray(data)
     if a.ndim == 3 and a.shape[-1] in (3, 4):
         a = a[..., :3].astype(np.float32) @ np.array([0.2126, 0.7152, 0.0722], np.float32)
         a = a / (255.0 if np.asarray(data).dtype == np.uint8 else 1.0)
     if a.ndim != 2:
         raise ValueError(f"the image layer must be 2-D (or RGB), got shape {a.shape}")
-    if a.dtype not in (np.uint8, np.uint16, np.float32):
+    if a.dtype.kind not in "iuf" or a.dtype == np.float16:
         a = a.astype(np.float32)
     return np.ascontiguousarray(a)
 
