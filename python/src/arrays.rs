@@ -75,7 +75,7 @@ pub fn image_samples(image: &Bound<'_, PyAny>) -> PyResult<(usize, usize, Owned)
             .map(|s| s.to_string())
             .unwrap_or_default();
         return Err(PyValueError::new_err(format!(
-            "images of dtype {dtype} are not supported: give integers or floats (convert with .astype)"
+            "images of dtype {dtype} are not supported: give integers, float32 or float64 (convert with .astype)"
         )));
     };
     Ok((width, height, owned))

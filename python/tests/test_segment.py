@@ -144,8 +144,9 @@ def test_every_integer_and_float_dtype_reads_as_the_tiff_reader_does():
 def test_array_errors_are_one_line_value_errors():
     img = discs()
     cases = [
-        (img > 100, "images of dtype bool are not supported: give integers or floats (convert with .astype)"),
-        (img.astype(np.complex64), "images of dtype complex64 are not supported: give integers or floats (convert with .astype)"),
+        (img > 100, "images of dtype bool are not supported: give integers, float32 or float64 (convert with .astype)"),
+        (img.astype(np.complex64), "images of dtype complex64 are not supported: give integers, float32 or float64 (convert with .astype)"),
+        (img.astype(np.float16), "images of dtype float16 are not supported: give integers, float32 or float64 (convert with .astype)"),
         (np.stack([img] * 3, axis=-1), "the image must be a 2-D array (height, width), got shape (120, 160, 3)"),
         (img[0], "the image must be a 2-D array (height, width), got shape (160,)"),
         (np.zeros((0, 5), np.uint8), "array has no pixels (5×0)"),
