@@ -3,7 +3,7 @@
 //! border, a cell leaving. Tracks and parents asserted exactly, as `res_track.txt` lists
 //! them (label, first frame, last frame, parent).
 
-use topocontour::evolution::{Field, Params, Polarity, Shape};
+use topocontour::evolution::{Field, Modality, Params, Polarity, Shape};
 use topocontour::geometry::Point;
 use topocontour::track::{TrackSettings, Tracker};
 
@@ -42,8 +42,14 @@ fn disk(x: f64, y: f64, r: f64) -> Capsule {
 
 /// Tracks `frames`; returns the CTC track lines.
 fn track(frames: &[Field]) -> String {
+    track_as(frames, Polarity::Bright, Modality::Generic)
+}
+
+/// Tracks `frames` of objects of `polarity` in `modality`.
+fn track_as(frames: &[Field], polarity: Polarity, modality: Modality) -> String {
     let params = Params {
-        polarity: Polarity::Bright,
+        polarity,
+        modality,
         ..Params::default()
     };
     let mut tracker = Tracker::new(TrackSettings::new(params), Vec::new());
@@ -258,6 +264,19 @@ fn a_colony_on_a_drifting_stage_keeps_its_tracks() {
 }
 
 #[test]
+fn a_colony_carried_further_than_a_stage_drifts_keeps_its_tracks() {
+    // Two rods 3 px apart slide 32 px right and 4 px down a frame (a pad sliding under
+    // a still camera): their contours are moved with them, not lost each frame.
+    let frames: Vec<Field> = (0..3)
+        .map(|t| {
+            let (dx, dy) = (32.0 * t as f64, 4.0 * t as f64);
+            blurred(frame(&upright_rods(&[8.0, 21.0], dx, dy)))
+        })
+        .collect();
+    assert_eq!(track(&frames), "1 0 2 0\n2 0 2 0\n");
+}
+
+#[test]
 fn a_cell_the_drift_carries_out_of_the_frame_ends_its_track() {
     // Three rods drifting right 7 px a frame, and a cell near the right edge that the
     // drift carries out: its outline is scaled into the frame, then its track ends.
@@ -331,6 +350,99 @@ fn a_bent_rod_and_a_kidney_are_not_cut() {
         })
         .collect();
     assert_eq!(track(&frames), "1 0 4 0\n2 0 4 0\n");
+}
+
+/// A rod and, far from it, a speck of radius `speck` (a bubble's dark centre, debris).
+fn rod_and_speck(speck: f64) -> Vec<Field> {
+    (0..3)
+        .map(|t| {
+            let rod = (
+                Point::new(20.0, 20.0 + t as f64),
+                Point::new(50.0, 20.0 + t as f64),
+                6.0,
+            );
+            blurred(frame(&[rod, disk(75.0, 48.0, speck)]))
+        })
+        .collect()
+}
+
+#[test]
+fn a_speck_in_transmitted_light_is_no_cell_and_in_fluorescence_is_one() {
+    // A speck a tenth of the rod's area: debris in phase contrast or bright field (dark
+    // objects, the frames inverted), a small nucleus in fluorescence.
+    let dark = |fs: Vec<Field>| -> Vec<Field> {
+        fs.into_iter()
+            .map(|f| Field::new(W, H, f.data.iter().map(|v| 1.0 - v).collect()))
+            .collect()
+    };
+    for m in [Modality::PhaseContrast, Modality::Brightfield] {
+        assert_eq!(
+            track_as(&dark(rod_and_speck(4.0)), Polarity::Dark, m),
+            "1 0 2 0\n"
+        );
+    }
+    let fluo = track_as(
+        &rod_and_speck(4.0),
+        Polarity::Bright,
+        Modality::Fluorescence,
+    );
+    assert_eq!(fluo, "1 0 2 0\n2 0 2 0\n");
+    // A cell of a third of the rod's area is a cell in any light.
+    let cell = track_as(
+        &dark(rod_and_speck(8.0)),
+        Polarity::Dark,
+        Modality::PhaseContrast,
+    );
+    assert_eq!(cell, "1 0 2 0\n2 0 2 0\n");
+}
+
+/// A nucleus of radius 10 (frames 0–2), then, in frames 3–4, two small nuclei of radius
+/// `r` at `apart` px either side of where it was; and a second nucleus throughout.
+fn mitosis(r: f64, apart: f64) -> Vec<Field> {
+    let other = disk(84.0, 54.0, 8.0);
+    let mut frames: Vec<Field> = (0..3)
+        .map(|_| blurred(frame(&[disk(40.0, 34.0, 10.0), other])))
+        .collect();
+    for k in 0..2 {
+        let d = apart + 2.0 * k as f64;
+        frames.push(blurred(frame(&[
+            disk(40.0 - d, 34.0 + 0.5 * d, r),
+            disk(40.0 + d, 34.0 - 0.5 * d, r),
+            other,
+        ])));
+    }
+    frames
+}
+
+#[test]
+fn daughters_pushed_apart_between_two_frames_are_children_of_the_nucleus_that_was_there() {
+    // A nucleus divides between frames: its contour finds nothing where it was, and two
+    // small nuclei are picked up on either side; they are its daughters.
+    let fluo = |fs: &[Field]| track_as(fs, Polarity::Bright, Modality::Fluorescence);
+    assert_eq!(
+        fluo(&mitosis(6.0, 16.0)),
+        "1 0 2 0\n2 0 4 0\n3 3 4 1\n4 3 4 1\n"
+    );
+    // Far beyond the nucleus's reach they are cells of their own.
+    assert_eq!(
+        fluo(&mitosis(6.0, 30.0)),
+        "1 0 2 0\n2 0 4 0\n3 3 4 0\n4 3 4 0\n"
+    );
+}
+
+#[test]
+fn a_cell_appearing_beside_one_that_kept_its_size_is_no_daughter() {
+    let frames: Vec<Field> = (0..5)
+        .map(|t| {
+            let mut cells = vec![disk(40.0, 34.0, 10.0)];
+            if t >= 3 {
+                cells.push(disk(62.0, 34.0, 6.0));
+            }
+            blurred(frame(&cells))
+        })
+        .collect();
+    let lines = track_as(&frames, Polarity::Bright, Modality::Fluorescence);
+    assert_eq!(lines, "1 0 4 0\n2 3 4 0\n");
 }
 
 #[test]

@@ -14,15 +14,21 @@
 //! The shift is the integer translation that best maps the last frame's cells onto the
 //! new frame: the mean squared difference over the cells' pixels (where the texture
 //! that tells the shift lies; the background of uneven light does not move with the
-//! stage), searched coarse to fine (a quarter of the resolution over ±[`MAX_SHIFT`],
-//! then ±1 at half and at full resolution), taken only when it beats no shift clearly
-//! ([`MIN_GAIN`]): a field that did not move keeps its contours where they were, and
-//! costs nine evaluations.
+//! stage, nor do the optics' bubbles when a colony's pad slides), searched coarse to
+//! fine from a quarter of the resolution over ±[`NEAR_SHIFT`] and from an eighth over
+//! ±[`MAX_SHIFT`], each refined at half and full resolution; taken only when it beats no
+//! shift clearly ([`MIN_GAIN`]), so a field that did not move keeps its contours where
+//! they were. Past the frame's edge the new frame counts as background, so a shift
+//! that carries cells out of view is no cheap match.
 
 use crate::image::Field;
 
-/// The largest shift searched, pixels (each way, along each axis).
-pub const MAX_SHIFT: i32 = 24;
+/// The largest shift searched, pixels (each way, along each axis): a real colony on a
+/// sliding agarose pad moved 103 px in one frame under a still camera.
+pub const MAX_SHIFT: i32 = 128;
+
+/// The drift of a stage, searched at a finer resolution than [`MAX_SHIFT`].
+pub const NEAR_SHIFT: i32 = 24;
 
 /// A shift is taken only when its mean squared difference is below this share of no
 /// shift's: noise alone never favours a neighbouring shift by that much.
@@ -54,25 +60,42 @@ pub fn field_shift(before: &Field, after: &Field, cells: &[u32]) -> (i32, i32) {
         .step_by(step)
         .map(|&i| ((i % w) as i32, (i / w) as i32))
         .collect();
-    let full = Level::new(before, after, &samples, 1);
+    // Past the frame's edge the new frame is taken as its background (its median): a
+    // shift that carries cells out of view is judged as one that lands them on nothing.
+    let mut v: Vec<f32> = after
+        .data
+        .iter()
+        .step_by(QUANTILE_STRIDE)
+        .copied()
+        .collect();
+    let k = v.len() / 2;
+    let pad = *v.select_nth_unstable_by(k, f32::total_cmp).1;
+    let full = Level::new(before, after, &samples, 1, pad);
     let still = full.cost((0, 0));
-    let near = full.best_around((0, 0), 1);
-    if near == (0, 0) {
-        return (0, 0);
-    }
-    // The field moved: coarse to fine, so a move of many pixels is not mistaken for the
-    // nearest local minimum of a textured colony.
-    let (b2, a2) = (block_mean(before, 2), block_mean(after, 2));
-    let (b4, a4) = (block_mean(before, 4), block_mean(after, 4));
-    let quarter = Level::new(&b4, &a4, &samples, 4);
-    let mut s = quarter.best_around((0, 0), MAX_SHIFT / 4);
-    s = Level::new(&b2, &a2, &samples, 2).best_around((2 * s.0, 2 * s.1), 1);
-    s = full.best_around((2 * s.0, 2 * s.1), 1);
-    let best = if full.cost(near) < full.cost(s) {
-        near
-    } else {
-        s
+    // Coarse to fine, so a move of many pixels is not mistaken for the nearest local
+    // minimum of a textured colony: from the quarter resolution over ±[`NEAR_SHIFT`]
+    // (a stage's drift), and from the eighth over ±[`MAX_SHIFT`] (a pad that slid, a
+    // colony carried off by flow); the lower cost at full resolution wins, and one pixel
+    // either way of no shift competes too.
+    let b2 = block_mean(before, 2);
+    let a2 = block_mean(after, 2);
+    let b4 = block_mean(&b2, 2);
+    let a4 = block_mean(&a2, 2);
+    let (b8, a8) = (block_mean(&b4, 2), block_mean(&a4, 2));
+    let half = Level::new(&b2, &a2, &samples, 2, pad);
+    let quarter = Level::new(&b4, &a4, &samples, 4, pad);
+    let eighth = Level::new(&b8, &a8, &samples, 8, pad);
+    let refine = |s: (i32, i32)| {
+        let s = half.best_around((2 * s.0, 2 * s.1), 1);
+        full.best_around((2 * s.0, 2 * s.1), 1)
     };
+    let near = refine(quarter.best_around((0, 0), NEAR_SHIFT / 4));
+    let coarse = eighth.best_around((0, 0), MAX_SHIFT / 8);
+    let far = quarter.best_around((2 * coarse.0, 2 * coarse.1), 1);
+    let best = [full.best_around((0, 0), 1), near, refine(far)]
+        .into_iter()
+        .min_by(|&a, &b| full.cost(a).total_cmp(&full.cost(b)))
+        .unwrap_or((0, 0));
     if full.cost(best) < MIN_GAIN * still {
         best
     } else {
@@ -131,41 +154,49 @@ struct Level<'a> {
     before: &'a Field,
     after: &'a Field,
     samples: Vec<(i32, i32)>,
+    /// The new frame's value past its edge.
+    pad: f32,
 }
 
 impl<'a> Level<'a> {
-    fn new(before: &'a Field, after: &'a Field, samples: &[(i32, i32)], scale: i32) -> Self {
+    fn new(
+        before: &'a Field,
+        after: &'a Field,
+        samples: &[(i32, i32)],
+        scale: i32,
+        pad: f32,
+    ) -> Self {
         let mut s: Vec<(i32, i32)> = samples
             .iter()
             .map(|&(x, y)| (x / scale, y / scale))
             .collect();
+        // Row by row, as the samples were taken, so full resolution sums in the same order.
+        s.sort_unstable_by_key(|&(x, y)| (y, x));
         s.dedup();
         Level {
             before,
             after,
             samples: s,
+            pad,
         }
     }
 
-    /// Mean squared difference of the samples moved by `s` that stay in the frame
-    /// (infinite when under half of them do).
+    /// Mean squared difference of the samples moved by `s`, those moved past the edge
+    /// against the pad.
     fn cost(&self, s: (i32, i32)) -> f64 {
         let (w, h) = (self.before.width as i32, self.before.height as i32);
-        let (mut sum, mut n) = (0.0f64, 0usize);
+        let mut sum = 0.0f64;
         for &(x, y) in &self.samples {
             let (u, v) = (x + s.0, y + s.1);
-            if u < 0 || v < 0 || u >= w || v >= h {
-                continue;
-            }
-            let d = self.after.data[(v * w + u) as usize] - self.before.data[(y * w + x) as usize];
+            let moved = if u < 0 || v < 0 || u >= w || v >= h {
+                self.pad
+            } else {
+                self.after.data[(v * w + u) as usize]
+            };
+            let d = moved - self.before.data[(y * w + x) as usize];
             sum += (d * d) as f64;
-            n += 1;
         }
-        if 2 * n < self.samples.len() {
-            f64::INFINITY
-        } else {
-            sum / n as f64
-        }
+        sum / self.samples.len().max(1) as f64
     }
 
     /// The shift of least cost within `reach` of `centre` (the centre on a tie).

@@ -43,6 +43,11 @@
 //!   (`Tracker::date`);
 //!   an outline of two rods side by side, which has no neck, is cut along their contact
 //!   ([`side`]) in the same way;
+//! - a cell picked up new near where a cell of the frame before was, whose contour
+//!   vanished or kept a part of her area, is her daughter (`Tracker::adopt`): a nucleus
+//!   that divided between two frames shows as two small cells pushed apart;
+//! - in transmitted light a new cell far smaller than the frame's typical cell is a
+//!   speck (debris, a bubble's centre) and dropped ([`SPECK_SHARE`]);
 //! - a new cell (on frame 0 or picked up later) that does not stand out from the band
 //!   around it ([`contrast`]) is dropped: seeds on a gently darker corner of uneven
 //!   light settle into such blobs; a carried cell is dropped, ending its track, below
@@ -73,7 +78,7 @@ pub use lineage::{Division, Lineage, Track};
 
 use crate::evolution::{find_seeds, EvolveError, Evolver, Field, Mode, Params, Shape};
 use crate::geometry::Point;
-use crate::image::ImageModel;
+use crate::image::{ImageModel, Modality};
 use crate::topology::TopologyEvent;
 use carry::{
     claim, drop_shreds, free_object, label_raster, labels_of, majority, ordered, regroup,
@@ -114,6 +119,30 @@ pub const EARLIER_NARROWING: f64 = 0.05;
 /// The narrowing allowed ([`EARLIER_NARROWING`]) grows by this much per radian the neck
 /// bends beyond [`EARLIER_TURN`]: the sharper the notch, the surer it is two caps.
 pub const EARLIER_NARROWING_PER_TURN: f64 = 0.15;
+
+/// In transmitted light (phase contrast, bright field), a new cell (no track before it)
+/// smaller than this share of the frame's typical cell (the area-weighted median: the
+/// size of the cell a random cell pixel lies in) is a speck, not a cell, unless it
+/// touches the frame's edge (a cell coming into view shows a sliver first). Such light
+/// shows debris and the dark centres of bubbles in the optics: 35–120 px against cells
+/// of 600 px and more on a real E. coli movie, where a cell at birth has half its
+/// mother's area or more. Fluorescence shows only what is labelled, and small nuclei
+/// are nuclei (sim_plus_01 has real ones of 125–260 px among 2,000 px ones).
+pub const SPECK_SHARE: f64 = 0.15;
+
+/// A cell new in a frame is a daughter of a cell of the frame before whose centroid lies
+/// within this many of that cell's radii (of a disk of its area): a nucleus that divided
+/// between two frames, its daughters pushed apart (real HeLa nuclei: 20–40 px from a
+/// mother of radius 20–25), is two small cells where she was, and her contour either
+/// vanished or settled on one of them.
+pub const ADOPT_REACH: f64 = 2.5;
+
+/// ... when the mother's contour came through on one of them, only if it kept at most
+/// this share of her area (she divided; a cell that stays whole keeps its size).
+pub const ADOPT_KEPT: f64 = 0.75;
+
+/// ... and only when the two daughters' areas are within this share of each other.
+pub const ADOPT_SHARE: f64 = 0.5;
 
 /// Frame 0's touching pieces are evolved again as one (`Tracker::join_rods`) when
 /// their union is a rod at most this many times as wide as either piece: end to end,
@@ -420,7 +449,16 @@ impl Tracker {
             _ => Vec::new(),
         };
         let groups = claim(&origins, pieces);
-        let groups = self.without_faint(groups, image);
+        let mut groups = self.without_faint(groups, image);
+        if matches!(
+            self.settings.params.modality,
+            Modality::PhaseContrast | Modality::Brightfield
+        ) {
+            groups = without_specks(groups, w, h);
+        }
+        if t > 0 {
+            self.adopt(&mut groups, w, h);
+        }
         let rods = side::rod_width(
             groups
                 .iter()
@@ -921,6 +959,108 @@ impl Tracker {
         any
     }
 
+    /// Moves new cells of `groups` (no owner) that are daughters of a cell of the frame
+    /// before into that cell's group ([`ADOPT_REACH`]): two of them when her contour
+    /// vanished, one beside the piece her contour kept when it kept under
+    /// [`ADOPT_KEPT`] of her area. Daughters are within [`ADOPT_SHARE`] of each other's
+    /// area, each no larger than she was, and off the `w`×`h` frame's edge (a cell coming
+    /// into view is new). The nearest mother is served first.
+    fn adopt(&self, groups: &mut Vec<(Option<u32>, Vec<TrackedObject>)>, w: usize, h: usize) {
+        let before: HashMap<u32, (f64, Point)> = self
+            .live
+            .iter()
+            .map(|(k, r)| {
+                let (a2, c) = crate::geometry::area2_centroid(r);
+                (*k, (0.5 * a2.abs(), c))
+            })
+            .collect();
+        // A cell whose contour vanished has no group left (the evolution again with new
+        // seeds starts from the pieces there are): an empty one.
+        let owned: HashSet<u32> = groups.iter().filter_map(|(o, _)| *o).collect();
+        for (k, _) in &self.live {
+            if !owned.contains(k) {
+                groups.push((Some(*k), Vec::new()));
+            }
+        }
+        // The new cells: (group, index in it).
+        let mut free: Vec<(usize, usize)> = groups
+            .iter()
+            .enumerate()
+            .filter(|(_, (owner, _))| owner.is_none())
+            .flat_map(|(g, (_, objs))| {
+                objs.iter()
+                    .enumerate()
+                    .filter(|(_, o)| !at_edge(o, w, h))
+                    .map(move |(i, _)| (g, i))
+            })
+            .collect();
+        let mut moves: Vec<((usize, usize), usize)> = Vec::new();
+        // Mothers by their distance to the nearest new cell.
+        let mut mothers: Vec<(f64, usize)> = groups
+            .iter()
+            .enumerate()
+            .filter_map(|(g, (owner, objs))| {
+                let (area, c) = *before.get(&(*owner)?)?;
+                (objs.len() <= 1).then_some(())?;
+                let near = free
+                    .iter()
+                    .map(|&(fg, i)| groups[fg].1[i].centroid.dist(c))
+                    .fold(f64::INFINITY, f64::min);
+                let reach = ADOPT_REACH * (area / std::f64::consts::PI).sqrt();
+                (near <= reach).then_some((near, g))
+            })
+            .collect();
+        mothers.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let alike = |a: f64, b: f64| a.min(b) >= ADOPT_SHARE * a.max(b);
+        for (_, g) in mothers {
+            let Some((area, c)) = groups[g].0.and_then(|k| before.get(&k).copied()) else {
+                continue;
+            };
+            let reach = ADOPT_REACH * (area / std::f64::consts::PI).sqrt();
+            let mut near: Vec<(f64, usize)> = free
+                .iter()
+                .enumerate()
+                .map(|(k, &(fg, i))| (groups[fg].1[i].centroid.dist(c), k))
+                .filter(|&(d, k)| {
+                    let (fg, i) = free[k];
+                    d <= reach && groups[fg].1[i].area <= area
+                })
+                .collect();
+            near.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let of = |k: usize| groups[free[k].0].1[free[k].1].area;
+            let taken: Vec<usize> = match groups[g].1.first() {
+                Some(kept) if kept.area <= ADOPT_KEPT * area => near
+                    .iter()
+                    .map(|&(_, k)| k)
+                    .find(|&k| alike(of(k), kept.area))
+                    .into_iter()
+                    .collect(),
+                Some(_) => Vec::new(),
+                None => match near.as_slice() {
+                    [(_, a), (_, b), ..] if alike(of(*a), of(*b)) => vec![*a, *b],
+                    _ => Vec::new(),
+                },
+            };
+            for &k in &taken {
+                moves.push((free[k], g));
+            }
+            let mut taken = taken;
+            taken.sort_unstable_by(|a, b| b.cmp(a));
+            for k in taken {
+                free.remove(k);
+            }
+        }
+        // Out of their groups from the back, so the indices left stay true.
+        moves.sort_by_key(|m| std::cmp::Reverse(m.0));
+        for ((fg, i), g) in moves {
+            let o = groups[fg].1.remove(i);
+            groups[g].1.push(o);
+        }
+        for (_, objs) in groups.iter_mut() {
+            objs.sort_by(|a, b| b.area.total_cmp(&a.area));
+        }
+    }
+
     /// Gives the pieces of one shape their tracks: the same track for one piece of a
     /// tracked cell, two children for two or more (the two largest; any further piece
     /// starts a track of its own), new tracks for the pieces of a new seed.
@@ -990,6 +1130,47 @@ fn leftover(evolved: &Evolved, w: usize, h: usize) -> usize {
         .2
         .as_deref()
         .map_or(0, |m| free_object(m, &labels_of(&evolved.0, w, h)))
+}
+
+/// Whether `o` touches the edge of a `w`×`h` frame (a cell coming into view).
+fn at_edge(o: &TrackedObject, w: usize, h: usize) -> bool {
+    let (w, h) = (w as f64, h as f64);
+    o.ring
+        .iter()
+        .any(|p| p.x < 1.5 || p.y < 1.5 || p.x > w - 1.5 || p.y > h - 1.5)
+}
+
+/// `groups` without their new cells that are specks ([`SPECK_SHARE`]) away from the
+/// `w`×`h` frame's edge.
+fn without_specks(
+    groups: Vec<(Option<u32>, Vec<TrackedObject>)>,
+    w: usize,
+    h: usize,
+) -> Vec<(Option<u32>, Vec<TrackedObject>)> {
+    let mut areas: Vec<f64> = groups
+        .iter()
+        .flat_map(|(_, g)| g.iter().map(|o| o.area))
+        .collect();
+    areas.sort_by(f64::total_cmp);
+    let total: f64 = areas.iter().sum();
+    let mut sum = 0.0;
+    let typical = areas
+        .iter()
+        .find(|&&a| {
+            sum += a;
+            2.0 * sum >= total
+        })
+        .copied()
+        .unwrap_or(0.0);
+    groups
+        .into_iter()
+        .map(|(owner, mut g)| {
+            if owner.is_none() {
+                g.retain(|o| o.area >= SPECK_SHARE * typical || at_edge(o, w, h));
+            }
+            (owner, g)
+        })
+        .collect()
 }
 
 #[cfg(test)]
