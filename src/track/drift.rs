@@ -34,6 +34,14 @@ pub const NEAR_SHIFT: i32 = 24;
 /// shift's: noise alone never favours a neighbouring shift by that much.
 pub const MIN_GAIN: f64 = 0.8;
 
+/// A search stands out when its least cost is under this share of its median: the
+/// cells found where they went; only when the search over ±[`NEAR_SHIFT`] does not is
+/// the wider one made. Over ±[`NEAR_SHIFT`], frames of synthetic movies (still,
+/// drifting, dense, fast) and of sim_plus_01 had their least at 0.05–0.15 of the median
+/// (medians per movie); a real colony whose pad slid 35–103 px, 0.45–0.95
+/// (docs/decisions.md, 2026-12-06).
+pub const FLAT: f64 = 0.25;
+
 /// Most pixels sampled (every k-th cell pixel beyond this).
 const MAX_SAMPLES: usize = 4_000;
 
@@ -72,6 +80,28 @@ pub fn field_shift(before: &Field, after: &Field, cells: &[u32]) -> (i32, i32) {
     let pad = *v.select_nth_unstable_by(k, f32::total_cmp).1;
     let full = Level::new(before, after, &samples, 1, pad);
     let still = full.cost((0, 0));
+    let close = full.best_around((0, 0), 1);
+    // A field that did not move: no shift is the best of its neighbours and far better
+    // than shifts [`NEAR_SHIFT`] away (the search costs a frame's tracking a tenth).
+    if close == (0, 0) {
+        let n = NEAR_SHIFT;
+        let mut far: Vec<f64> = [
+            (n, 0),
+            (-n, 0),
+            (0, n),
+            (0, -n),
+            (n, n),
+            (-n, -n),
+            (n, -n),
+            (-n, n),
+        ]
+        .map(|s| full.cost(s))
+        .into();
+        let k = far.len() / 2;
+        if still <= FLAT * *far.select_nth_unstable_by(k, f64::total_cmp).1 {
+            return (0, 0);
+        }
+    }
     // Coarse to fine, so a move of many pixels is not mistaken for the nearest local
     // minimum of a textured colony: from the quarter resolution over ±[`NEAR_SHIFT`]
     // (a stage's drift), and from the eighth over ±[`MAX_SHIFT`] (a pad that slid, a
@@ -81,18 +111,22 @@ pub fn field_shift(before: &Field, after: &Field, cells: &[u32]) -> (i32, i32) {
     let a2 = block_mean(after, 2);
     let b4 = block_mean(&b2, 2);
     let a4 = block_mean(&a2, 2);
-    let (b8, a8) = (block_mean(&b4, 2), block_mean(&a4, 2));
     let half = Level::new(&b2, &a2, &samples, 2, pad);
     let quarter = Level::new(&b4, &a4, &samples, 4, pad);
-    let eighth = Level::new(&b8, &a8, &samples, 8, pad);
     let refine = |s: (i32, i32)| {
         let s = half.best_around((2 * s.0, 2 * s.1), 1);
         full.best_around((2 * s.0, 2 * s.1), 1)
     };
-    let near = refine(quarter.best_around((0, 0), NEAR_SHIFT / 4));
-    let coarse = eighth.best_around((0, 0), MAX_SHIFT / 8);
-    let far = quarter.best_around((2 * coarse.0, 2 * coarse.1), 1);
-    let best = [full.best_around((0, 0), 1), near, refine(far)]
+    let (near, flat) = quarter.search((0, 0), NEAR_SHIFT / 4);
+    let mut candidates = vec![close, refine(near)];
+    // Farther only when no shift within reach stands out: the cells landed on nothing.
+    if flat {
+        let (b8, a8) = (block_mean(&b4, 2), block_mean(&a4, 2));
+        let eighth = Level::new(&b8, &a8, &samples, 8, pad);
+        let (coarse, _) = eighth.search((0, 0), MAX_SHIFT / 8);
+        candidates.push(refine(quarter.best_around((2 * coarse.0, 2 * coarse.1), 1)));
+    }
+    let best = candidates
         .into_iter()
         .min_by(|&a, &b| full.cost(a).total_cmp(&full.cost(b)))
         .unwrap_or((0, 0));
@@ -201,17 +235,28 @@ impl<'a> Level<'a> {
 
     /// The shift of least cost within `reach` of `centre` (the centre on a tie).
     fn best_around(&self, centre: (i32, i32), reach: i32) -> (i32, i32) {
+        self.search(centre, reach).0
+    }
+
+    /// The shift of least cost within `reach` of `centre` (the centre on a tie), and
+    /// whether the search found nothing that stands out: its least cost above
+    /// [`FLAT`] of the median.
+    fn search(&self, centre: (i32, i32), reach: i32) -> ((i32, i32), bool) {
+        let mut costs = Vec::with_capacity(((2 * reach + 1) * (2 * reach + 1)) as usize);
         let mut best = (self.cost(centre), centre);
         for dy in -reach..=reach {
             for dx in -reach..=reach {
                 let s = (centre.0 + dx, centre.1 + dy);
                 let c = self.cost(s);
+                costs.push(c);
                 if c < best.0 {
                     best = (c, s);
                 }
             }
         }
-        best.1
+        let k = costs.len() / 2;
+        let median = *costs.select_nth_unstable_by(k, f64::total_cmp).1;
+        (best.1, best.0 > FLAT * median)
     }
 }
 
