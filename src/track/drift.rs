@@ -137,6 +137,105 @@ pub fn field_shift(before: &Field, after: &Field, cells: &[u32]) -> (i32, i32) {
     }
 }
 
+/// A field that moved at least this far (pixels, along an axis) also had its cells move
+/// against each other: each cell's own shift is then searched ([`cell_shifts`]). A
+/// real colony whose pad slid 10–100 px a frame had its cells 3–18 px off one shift for
+/// all; a stage's drift of a few pixels moves every cell alike.
+pub const CELL_FROM: i32 = 8;
+
+/// How far each cell's own shift is searched beyond the field's (pixels, each way).
+pub const CELL_REACH: i32 = 6;
+
+/// Per cell of `labels` (a label raster of `before`), the shift beyond the field's `s`
+/// that best maps its pixels and a 2 px band around them onto `after` (the mean squared
+/// difference, the band being where a rod's end and sides show); `(0, 0)` unless it beats
+/// none by [`MIN_GAIN`].
+pub fn cell_shifts(
+    before: &Field,
+    after: &Field,
+    labels: &[u32],
+    s: (i32, i32),
+) -> std::collections::HashMap<u32, (i32, i32)> {
+    let (w, h) = (before.width as i32, before.height as i32);
+    let mut out = std::collections::HashMap::new();
+    if after.width != before.width
+        || after.height != before.height
+        || labels.len() != (w * h) as usize
+    {
+        return out;
+    }
+    // Each cell's box.
+    let mut boxes: std::collections::HashMap<u32, [i32; 4]> = std::collections::HashMap::new();
+    for (i, &l) in labels.iter().enumerate() {
+        if l != 0 {
+            let (x, y) = (i as i32 % w, i as i32 / w);
+            let b = boxes.entry(l).or_insert([x, y, x, y]);
+            *b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+        }
+    }
+    const BAND: i32 = 2;
+    for (l, b) in boxes {
+        let mut samples: Vec<(i32, i32)> = Vec::new();
+        for y in (b[1] - BAND).max(0)..=(b[3] + BAND).min(h - 1) {
+            for x in (b[0] - BAND).max(0)..=(b[2] + BAND).min(w - 1) {
+                let at = labels[(y * w + x) as usize];
+                let near = at == l
+                    || (at == 0
+                        && (-BAND..=BAND).any(|dy| {
+                            (-BAND..=BAND).any(|dx| {
+                                let (u, v) = (x + dx, y + dy);
+                                u >= 0
+                                    && v >= 0
+                                    && u < w
+                                    && v < h
+                                    && labels[(v * w + u) as usize] == l
+                            })
+                        }));
+                if near {
+                    samples.push((x, y));
+                }
+            }
+        }
+        let step = samples.len().div_ceil(MAX_CELL_SAMPLES).max(1);
+        let samples: Vec<(i32, i32)> = samples.into_iter().step_by(step).collect();
+        let cost = |e: (i32, i32)| -> f64 {
+            let mut sum = 0.0f64;
+            let mut n = 0usize;
+            for &(x, y) in &samples {
+                let (u, v) = (x + s.0 + e.0, y + s.1 + e.1);
+                if u < 0 || v < 0 || u >= w || v >= h {
+                    continue;
+                }
+                let d = after.data[(v * w + u) as usize] - before.data[(y * w + x) as usize];
+                sum += (d * d) as f64;
+                n += 1;
+            }
+            if 2 * n < samples.len() {
+                f64::INFINITY
+            } else {
+                sum / n as f64
+            }
+        };
+        let none = cost((0, 0));
+        let mut best = (none, (0, 0));
+        for dy in -CELL_REACH..=CELL_REACH {
+            for dx in -CELL_REACH..=CELL_REACH {
+                let c = cost((dx, dy));
+                if c < best.0 {
+                    best = (c, (dx, dy));
+                }
+            }
+        }
+        if best.1 != (0, 0) && best.0 < MIN_GAIN * none {
+            out.insert(l, best.1);
+        }
+    }
+    out
+}
+
+/// Most pixels sampled per cell ([`cell_shifts`]).
+const MAX_CELL_SAMPLES: usize = 600;
+
 /// Quantiles [`ON_QUANTILES`] of a frame put at 0 and 1 (read from every
 /// [`QUANTILE_STRIDE`]-th pixel).
 pub fn on_quantiles(f: &Field) -> Field {
@@ -311,5 +410,47 @@ mod tests {
             let moved = field_shift(&on_quantiles(&before), &on_quantiles(&after), &cells);
             assert_eq!(moved, s);
         }
+    }
+
+    /// Blurred blobs `(x, y, r)` on a 160×120 frame, and their labels (1, 2, …).
+    fn blobs(centres: &[(i32, i32, i32)]) -> (Field, Vec<u32>) {
+        let (w, h) = (160usize, 120usize);
+        let mut data = vec![0.2f32; w * h];
+        let mut labels = vec![0u32; w * h];
+        for (k, &(cx, cy, r)) in centres.iter().enumerate() {
+            for y in 0..h as i32 {
+                for x in 0..w as i32 {
+                    let d2 = ((x - cx) * (x - cx) + (y - cy) * (y - cy)) as f32;
+                    data[(y * w as i32 + x) as usize] += 0.7 * (-d2 / (r * r) as f32).exp();
+                    if d2 <= (r * r) as f32 {
+                        labels[(y * w as i32 + x) as usize] = k as u32 + 1;
+                    }
+                }
+            }
+        }
+        (on_quantiles(&Field::new(w, h, data)), labels)
+    }
+
+    #[test]
+    fn a_cell_that_moved_beyond_the_field_gets_its_own_shift() {
+        let at = [(30, 30, 8), (60, 40, 10), (45, 75, 7)];
+        let (before, cells) = blobs(&at);
+        // The field moved (40, 10); the second cell 4 px further right and 3 up.
+        let moved: Vec<(i32, i32, i32)> = at
+            .iter()
+            .enumerate()
+            .map(|(k, &(x, y, r))| {
+                if k == 1 {
+                    (x + 44, y + 7, r)
+                } else {
+                    (x + 40, y + 10, r)
+                }
+            })
+            .collect();
+        let (after, _) = blobs(&moved);
+        let own = cell_shifts(&before, &after, &cells, (40, 10));
+        assert_eq!(own.get(&2), Some(&(4, -3)));
+        assert_eq!(own.get(&1), None);
+        assert_eq!(own.get(&3), None);
     }
 }

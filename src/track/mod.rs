@@ -398,6 +398,17 @@ impl Tracker {
         if let Some(before) = self.previous.take() {
             let s = drift::field_shift(&before, &scaled, &self.labels);
             if s != (0, 0) {
+                let own = if s.0.abs().max(s.1.abs()) >= drift::CELL_FROM {
+                    drift::cell_shifts(&before, &scaled, &self.labels, s)
+                } else {
+                    HashMap::new()
+                };
+                for (track, ring) in self.live.iter_mut() {
+                    if let Some(&(dx, dy)) = own.get(track) {
+                        let d = Point::new(dx as f64, dy as f64);
+                        ring.iter_mut().for_each(|p| *p = *p + d);
+                    }
+                }
                 self.follow(s, w, h);
                 shift = Point::new(s.0 as f64, s.1 as f64);
             }
