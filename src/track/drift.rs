@@ -363,21 +363,15 @@ impl<'a> Level<'a> {
 mod tests {
     use super::*;
 
-    /// A frame of blurred-looking blobs at `offset`, with labels of the blobs unshifted.
-    fn scene(offset: (i32, i32)) -> (Field, Vec<u32>) {
-        let (w, h) = (120usize, 100usize);
-        let centres = [(30, 30, 8), (70, 40, 10), (50, 70, 7), (90, 75, 9)];
+    /// Blurred-looking blobs `(x, y, r)` on a `w`×`h` frame, and their labels (1, 2, …).
+    fn blobs(w: usize, h: usize, centres: &[(i32, i32, i32)]) -> (Field, Vec<u32>) {
         let mut data = vec![0.2f32; w * h];
         let mut labels = vec![0u32; w * h];
         for (k, &(cx, cy, r)) in centres.iter().enumerate() {
             for y in 0..h as i32 {
                 for x in 0..w as i32 {
                     let d2 = ((x - cx) * (x - cx) + (y - cy) * (y - cy)) as f32;
-                    let v = (-d2 / (r * r) as f32).exp();
-                    let (u, t) = (x + offset.0, y + offset.1);
-                    if (0..w as i32).contains(&u) && (0..h as i32).contains(&t) {
-                        data[(t * w as i32 + u) as usize] += 0.7 * v;
-                    }
+                    data[(y * w as i32 + x) as usize] += 0.7 * (-d2 / (r * r) as f32).exp();
                     if d2 <= (r * r) as f32 {
                         labels[(y * w as i32 + x) as usize] = k as u32 + 1;
                     }
@@ -385,6 +379,13 @@ mod tests {
             }
         }
         (Field::new(w, h, data), labels)
+    }
+
+    /// A frame of four blobs moved by `offset`, with the labels of the blobs unmoved.
+    fn scene(offset: (i32, i32)) -> (Field, Vec<u32>) {
+        let centres = [(30, 30, 8), (70, 40, 10), (50, 70, 7), (90, 75, 9)];
+        let moved = centres.map(|(x, y, r)| (x + offset.0, y + offset.1, r));
+        (blobs(120, 100, &moved).0, blobs(120, 100, &centres).1)
     }
 
     #[test]
@@ -412,29 +413,11 @@ mod tests {
         }
     }
 
-    /// Blurred blobs `(x, y, r)` on a 160×120 frame, and their labels (1, 2, …).
-    fn blobs(centres: &[(i32, i32, i32)]) -> (Field, Vec<u32>) {
-        let (w, h) = (160usize, 120usize);
-        let mut data = vec![0.2f32; w * h];
-        let mut labels = vec![0u32; w * h];
-        for (k, &(cx, cy, r)) in centres.iter().enumerate() {
-            for y in 0..h as i32 {
-                for x in 0..w as i32 {
-                    let d2 = ((x - cx) * (x - cx) + (y - cy) * (y - cy)) as f32;
-                    data[(y * w as i32 + x) as usize] += 0.7 * (-d2 / (r * r) as f32).exp();
-                    if d2 <= (r * r) as f32 {
-                        labels[(y * w as i32 + x) as usize] = k as u32 + 1;
-                    }
-                }
-            }
-        }
-        (on_quantiles(&Field::new(w, h, data)), labels)
-    }
-
     #[test]
     fn a_cell_that_moved_beyond_the_field_gets_its_own_shift() {
         let at = [(30, 30, 8), (60, 40, 10), (45, 75, 7)];
-        let (before, cells) = blobs(&at);
+        let (before, cells) = blobs(160, 120, &at);
+        let before = on_quantiles(&before);
         // The field moved (40, 10); the second cell 4 px further right and 3 up.
         let moved: Vec<(i32, i32, i32)> = at
             .iter()
@@ -447,7 +430,7 @@ mod tests {
                 }
             })
             .collect();
-        let (after, _) = blobs(&moved);
+        let after = on_quantiles(&blobs(160, 120, &moved).0);
         let own = cell_shifts(&before, &after, &cells, (40, 10));
         assert_eq!(own.get(&2), Some(&(4, -3)));
         assert_eq!(own.get(&1), None);
