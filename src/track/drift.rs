@@ -23,7 +23,7 @@
 
 use crate::image::Field;
 
-/// The largest shift searched, pixels (each way, along each axis): a real colony on a
+/// About the largest shift searched, pixels (each way, along each axis): a real colony on a
 /// sliding agarose pad moved 103 px in one frame under a still camera.
 pub const MAX_SHIFT: i32 = 128;
 
@@ -70,14 +70,7 @@ pub fn field_shift(before: &Field, after: &Field, cells: &[u32]) -> (i32, i32) {
         .collect();
     // Past the frame's edge the new frame is taken as its background (its median): a
     // shift that carries cells out of view is judged as one that lands them on nothing.
-    let mut v: Vec<f32> = after
-        .data
-        .iter()
-        .step_by(QUANTILE_STRIDE)
-        .copied()
-        .collect();
-    let k = v.len() / 2;
-    let pad = *v.select_nth_unstable_by(k, f32::total_cmp).1;
+    let pad = background(after);
     let full = Level::new(before, after, &samples, 1, pad);
     let still = full.cost((0, 0));
     let close = full.best_around((0, 0), 1);
@@ -148,8 +141,9 @@ pub const CELL_REACH: i32 = 6;
 
 /// Per cell of `labels` (a label raster of `before`), the shift beyond the field's `s`
 /// that best maps its pixels and a 2 px band around them onto `after` (the mean squared
-/// difference, the band being where a rod's end and sides show); `(0, 0)` unless it beats
-/// none by [`MIN_GAIN`].
+/// difference, the band being where a rod's end and sides show; past the edge against
+/// the frame's background, so a leaving cell is not pulled back in); a cell is left out
+/// unless its best beats no shift of its own by [`MIN_GAIN`].
 pub fn cell_shifts(
     before: &Field,
     after: &Field,
@@ -174,6 +168,7 @@ pub fn cell_shifts(
         }
     }
     const BAND: i32 = 2;
+    let pad = background(after);
     for (l, b) in boxes {
         let mut samples: Vec<(i32, i32)> = Vec::new();
         for y in (b[1] - BAND).max(0)..=(b[3] + BAND).min(h - 1) {
@@ -200,21 +195,17 @@ pub fn cell_shifts(
         let samples: Vec<(i32, i32)> = samples.into_iter().step_by(step).collect();
         let cost = |e: (i32, i32)| -> f64 {
             let mut sum = 0.0f64;
-            let mut n = 0usize;
             for &(x, y) in &samples {
                 let (u, v) = (x + s.0 + e.0, y + s.1 + e.1);
-                if u < 0 || v < 0 || u >= w || v >= h {
-                    continue;
-                }
-                let d = after.data[(v * w + u) as usize] - before.data[(y * w + x) as usize];
+                let moved = if u < 0 || v < 0 || u >= w || v >= h {
+                    pad
+                } else {
+                    after.data[(v * w + u) as usize]
+                };
+                let d = moved - before.data[(y * w + x) as usize];
                 sum += (d * d) as f64;
-                n += 1;
             }
-            if 2 * n < samples.len() {
-                f64::INFINITY
-            } else {
-                sum / n as f64
-            }
+            sum / samples.len().max(1) as f64
         };
         let none = cost((0, 0));
         let mut best = (none, (0, 0));
@@ -231,6 +222,16 @@ pub fn cell_shifts(
         }
     }
     out
+}
+
+/// The frame's background: its median (read from every [`QUANTILE_STRIDE`]-th pixel).
+fn background(f: &Field) -> f32 {
+    let mut v: Vec<f32> = f.data.iter().step_by(QUANTILE_STRIDE).copied().collect();
+    if v.is_empty() {
+        return 0.0;
+    }
+    let k = v.len() / 2;
+    *v.select_nth_unstable_by(k, f32::total_cmp).1
 }
 
 /// Most pixels sampled per cell ([`cell_shifts`]).
@@ -281,7 +282,7 @@ fn block_mean(f: &Field, k: usize) -> Field {
     Field::new(wk, hk, data)
 }
 
-/// One resolution of the search: the two frames at `scale` (1, 2, 4) and the samples
+/// One resolution of the search: the two frames at `scale` (1, 2, 4, 8) and the samples
 /// at that resolution.
 struct Level<'a> {
     before: &'a Field,

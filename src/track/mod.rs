@@ -409,7 +409,7 @@ impl Tracker {
                         ring.iter_mut().for_each(|p| *p = *p + d);
                     }
                 }
-                self.follow(s, w, h);
+                self.follow(s, &own, w, h);
                 shift = Point::new(s.0 as f64, s.1 as f64);
             }
         }
@@ -461,10 +461,12 @@ impl Tracker {
         };
         let groups = claim(&origins, pieces);
         let mut groups = self.without_faint(groups, image);
-        if matches!(
+        // The user's own shapes on frame 0 are never specks.
+        let transmitted = matches!(
             self.settings.params.modality,
             Modality::PhaseContrast | Modality::Brightfield
-        ) {
+        );
+        if transmitted && (t > 0 || automatic) {
             groups = without_specks(groups, w, h);
         }
         if t > 0 {
@@ -560,11 +562,13 @@ impl Tracker {
         Ok(frame)
     }
 
-    /// Moves the last frame's cells (outlines and labels) by the field's shift `s`. An
+    /// Moves the last frame's cells (outlines and labels) by the field's shift `s` (the
+    /// labels of a cell in `own` by its own shift beyond, which its outline has already
+    /// made: [`drift::cell_shifts`]). An
     /// outline carried partly out of the `w`×`h` frame is scaled about its centre until
     /// it fits (a similarity keeps it simple; the evolution then fills what shows of the
     /// cell); one whose centre left the frame ends its track, as a cell that left it.
-    fn follow(&mut self, s: (i32, i32), w: usize, h: usize) {
+    fn follow(&mut self, s: (i32, i32), own: &HashMap<u32, (i32, i32)>, w: usize, h: usize) {
         let d = Point::new(s.0 as f64, s.1 as f64);
         let (lo, hi) = (
             Point::new(0.5, 0.5),
@@ -594,7 +598,8 @@ impl Tracker {
         });
         let mut moved = vec![0u32; w * h];
         for (i, &l) in self.labels.iter().enumerate() {
-            let (x, y) = ((i % w) as i32 + s.0, (i / w) as i32 + s.1);
+            let e = own.get(&l).copied().unwrap_or((0, 0));
+            let (x, y) = ((i % w) as i32 + s.0 + e.0, (i / w) as i32 + s.1 + e.1);
             if l != 0 && (0..w as i32).contains(&x) && (0..h as i32).contains(&y) {
                 moved[y as usize * w + x as usize] = l;
             }
