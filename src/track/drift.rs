@@ -193,20 +193,8 @@ pub fn cell_shifts(
         }
         let step = samples.len().div_ceil(MAX_CELL_SAMPLES).max(1);
         let samples: Vec<(i32, i32)> = samples.into_iter().step_by(step).collect();
-        let cost = |e: (i32, i32)| -> f64 {
-            let mut sum = 0.0f64;
-            for &(x, y) in &samples {
-                let (u, v) = (x + s.0 + e.0, y + s.1 + e.1);
-                let moved = if u < 0 || v < 0 || u >= w || v >= h {
-                    pad
-                } else {
-                    after.data[(v * w + u) as usize]
-                };
-                let d = moved - before.data[(y * w + x) as usize];
-                sum += (d * d) as f64;
-            }
-            sum / samples.len().max(1) as f64
-        };
+        let level = Level::new(before, after, &samples, 1, pad);
+        let cost = |e: (i32, i32)| level.cost((s.0 + e.0, s.1 + e.1));
         let none = cost((0, 0));
         let mut best = (none, (0, 0));
         for dy in -CELL_REACH..=CELL_REACH {
