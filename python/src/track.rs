@@ -133,6 +133,15 @@ fn run(
     for frame in &kept {
         csv.push_str(&ctc::csv_rows(frame, tracker.lineage()));
     }
+    // The masks the CLI writes: each cell widened by a layer of pixels.
+    let labels: Vec<u32> = if size == 0 {
+        labels
+    } else {
+        labels
+            .chunks(size)
+            .flat_map(|f| topocontour::image::widen::widened(f, w))
+            .collect()
+    };
     Ok(Tracks {
         name,
         size: (w, h),

@@ -714,7 +714,8 @@ fn track_labels(
         .iter()
         .map(|o| (o.track, o.ring.as_slice()))
         .collect();
-    ctc::label_image(&label_raster(&rings, w, h), w, h, tiff)
+    let labels = crate::image::widen::widened(&label_raster(&rings, w, h), w);
+    ctc::label_image(&labels, w, h, tiff)
         .ok_or_else(|| super::AppError::Movie("more than 65,535 tracks".into()))
 }
 

@@ -287,7 +287,8 @@ impl Out<'_> {
     fn write(&mut self, held: &Held, lineage: &Lineage) -> Result<(), Failure> {
         let (a, (w, h), t) = (self.a, self.size, held.frame.frame);
         if let Some(dir) = &self.plan.ctc {
-            let bytes = ctc::label_image(&held.labels, w, h, true)
+            let labels = crate::image::widen::widened(&held.labels, w);
+            let bytes = ctc::label_image(&labels, w, h, true)
                 .ok_or_else(|| bad("more than 65,535 tracks for 16-bit label images"))?;
             // An earlier result's res_track.txt would describe masks this run replaces
             // one by one (and, killed, leaves mixed): it goes before the first mask and

@@ -8,7 +8,8 @@
 //! under the user's shapes ([`hints`]); and the automatic seeds built from them: the
 //! distance transform ([`distance`]), persistent maxima ([`maxima`]), the seeds' basins
 //! ([`seeds`], [`outline`]) and their cuts at notches ([`declump`]); what a run keeps
-//! of the image for its outputs ([`stored`]).
+//! of the image for its outputs ([`stored`]); the label images a tracked movie reports,
+//! widened to the cells' edges ([`widen`]).
 //!
 //! [`model::ImageModel`] gathers what an engine reads, prepared once
 //! ([`ImageModel::prepare`]): the evolver and the automatic seeds both start from it.
@@ -34,6 +35,7 @@ pub(crate) mod patch;
 pub mod scale;
 pub mod seeds;
 pub mod stored;
+pub mod widen;
 
 pub use field::{Field, Pyramid};
 pub use intensity::{IntensityModel, Polarity};
