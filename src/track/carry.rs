@@ -6,7 +6,7 @@ use crate::contours::ContourSet;
 use crate::evolution::Shape;
 use crate::geometry::{fill_even_odd, Point};
 use crate::image::ImageModel;
-use crate::track::{TrackedObject, MIN_CLAIMED_SHARE, MIN_DAUGHTER_SHARE};
+use crate::track::{TrackedObject, MIN_CLAIMED_SHARE};
 
 /// The ring `pts` (an outer ring, region on the left) scaled about its area centroid so
 /// its boundary moves in by about `by` pixels (at most to half its size): the start of
@@ -163,11 +163,12 @@ pub fn settled(origins: &[Origin], pieces: &[Vec<TrackedObject>]) -> (Vec<Shape>
         .unzip()
 }
 
-/// The pieces of shapes of one origin in one group (largest first, shreds dropped:
-/// [`drop_shreds`]), shapes of other origins as they are.
+/// The pieces of shapes of one origin in one group (largest first, shreds under `share`
+/// of the largest dropped: [`drop_shreds`]), shapes of other origins as they are.
 pub fn regroup(
     origins: Vec<Origin>,
     pieces: Vec<Vec<TrackedObject>>,
+    share: f64,
 ) -> (Vec<Origin>, Vec<Vec<TrackedObject>>) {
     let (mut out_o, mut out_p): (Vec<Origin>, Vec<Vec<TrackedObject>>) = (Vec::new(), Vec::new());
     for (o, g) in origins.into_iter().zip(pieces) {
@@ -182,16 +183,17 @@ pub fn regroup(
             }
         }
     }
-    out_p.iter_mut().for_each(drop_shreds);
+    out_p.iter_mut().for_each(|g| drop_shreds(g, share));
     (out_o, out_p)
 }
 
-/// Sorts one shape's pieces largest first and drops those under [`MIN_DAUGHTER_SHARE`]
-/// of the largest (shreds, not daughters).
-pub fn drop_shreds(g: &mut Vec<TrackedObject>) {
+/// Sorts one shape's pieces largest first and drops those under `share` of the largest
+/// (shreds, not daughters: [`MIN_DAUGHTER_SHARE`], or [`crate::track::SISTER_SHARE`] in
+/// transmitted light).
+pub fn drop_shreds(g: &mut Vec<TrackedObject>, share: f64) {
     g.sort_by(|a, b| b.area.total_cmp(&a.area));
     if let Some(big) = g.first().map(|o| o.area) {
-        g.retain(|o| o.area >= MIN_DAUGHTER_SHARE * big);
+        g.retain(|o| o.area >= share * big);
     }
 }
 
@@ -241,6 +243,7 @@ pub fn claim(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::track::MIN_DAUGHTER_SHARE;
 
     fn piece(area: f64) -> TrackedObject {
         TrackedObject {
@@ -297,13 +300,20 @@ mod tests {
             vec![piece(50.0)],
             vec![piece(1000.0), piece(100.0)],
         ];
-        let (o, p) = regroup(origins, pieces);
+        let (o, p) = regroup(origins, pieces, MIN_DAUGHTER_SHARE);
         assert_eq!(o, [Origin::Carried(2), Origin::New]);
         let a: Vec<Vec<f64>> = p
             .iter()
             .map(|g| g.iter().map(|x| x.area).collect())
             .collect();
         assert_eq!(a, [vec![1000.0, 300.0], vec![50.0]]);
+        // In transmitted light a piece under 0.4 of its sister is a cap torn off, not a
+        // daughter; one of 0.45 is a daughter.
+        for (small, kept) in [(300.0, vec![1000.0]), (450.0, vec![1000.0, 450.0])] {
+            let mut g = vec![piece(small), piece(1000.0)];
+            drop_shreds(&mut g, crate::track::SISTER_SHARE);
+            assert_eq!(g.iter().map(|x| x.area).collect::<Vec<_>>(), kept);
+        }
     }
 
     #[test]

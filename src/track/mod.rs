@@ -93,6 +93,16 @@ use std::sync::Arc;
 /// is not).
 pub const MIN_DAUGHTER_SHARE: f64 = 0.2;
 
+/// In transmitted light (phase contrast, bright field), the smallest area of a split's
+/// smaller piece as a share of the larger: rods divide into sisters of one size (the
+/// curated masks of a real E. coli movie: 0.70–0.98 in their first frame), while a
+/// carried outline that pinches at a paler spot inside a cell tears off a cap of it. On
+/// a real dense colony such pinches were most of 500 splits (median share 0.48) where
+/// the synthetic rods showed none; fluorescent daughters keep [`MIN_DAUGHTER_SHARE`], as
+/// one may show only partly in its first frame (docs/decisions.md, 2026-12-06, seventh
+/// session).
+pub const SISTER_SHARE: f64 = 0.4;
+
 /// Smallest area of a daughter that came apart from its mother's contour (see
 /// [`carry::claim`]), as a share of the larger: it shows only partly in its first
 /// frame (the mother condensed and pinched it off dimly), so a quarter of
@@ -644,7 +654,7 @@ impl Tracker {
         }
         let again = self.evolve(image, &shapes)?;
         self.residual = leftover(&again, w, h);
-        let (all, pieces) = regroup(all, again.0);
+        let (all, pieces) = regroup(all, again.0, self.shred_share());
         Ok((all, pieces, evolved.1 + again.1))
     }
 
@@ -709,8 +719,18 @@ impl Tracker {
                 });
             }
         }
-        pieces.iter_mut().for_each(drop_shreds);
+        let share = self.shred_share();
+        pieces.iter_mut().for_each(|g| drop_shreds(g, share));
         Ok((pieces, ev.frames(), Some(ev.image().clone())))
+    }
+
+    /// The least share of a split's smaller piece that makes it a daughter, not a shred
+    /// ([`SISTER_SHARE`] in transmitted light, else [`MIN_DAUGHTER_SHARE`]).
+    fn shred_share(&self) -> f64 {
+        match self.settings.params.modality {
+            Modality::PhaseContrast | Modality::Brightfield => SISTER_SHARE,
+            _ => MIN_DAUGHTER_SHARE,
+        }
     }
 
     /// The pyramid levels the next frame evolves through: the settings', or the full
