@@ -188,8 +188,8 @@ pub fn regroup(
 }
 
 /// Sorts one shape's pieces largest first and drops those under `share` of the largest
-/// (shreds, not daughters: [`crate::track::MIN_DAUGHTER_SHARE`], or [`crate::track::SISTER_SHARE`] in
-/// transmitted light).
+/// (shreds, not daughters: [`crate::track::MIN_DAUGHTER_SHARE`], or
+/// [`crate::track::SISTER_SHARE`] in transmitted light).
 pub fn drop_shreds(g: &mut Vec<TrackedObject>, share: f64) {
     g.sort_by(|a, b| b.area.total_cmp(&a.area));
     if let Some(big) = g.first().map(|o| o.area) {

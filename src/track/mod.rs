@@ -413,12 +413,6 @@ impl Tracker {
                 } else {
                     HashMap::new()
                 };
-                for (track, ring) in self.live.iter_mut() {
-                    if let Some(&(dx, dy)) = own.get(track) {
-                        let d = Point::new(dx as f64, dy as f64);
-                        ring.iter_mut().for_each(|p| *p = *p + d);
-                    }
-                }
                 self.follow(s, &own, w, h);
                 shift = Point::new(s.0 as f64, s.1 as f64);
             }
@@ -472,11 +466,7 @@ impl Tracker {
         let groups = claim(&origins, pieces);
         let mut groups = self.without_faint(groups, image);
         // The user's own shapes on frame 0 are never specks.
-        let transmitted = matches!(
-            self.settings.params.modality,
-            Modality::PhaseContrast | Modality::Brightfield
-        );
-        if transmitted && (t > 0 || automatic) {
+        if self.transmitted() && (t > 0 || automatic) {
             groups = without_specks(groups, w, h);
         }
         if t > 0 {
@@ -572,20 +562,24 @@ impl Tracker {
         Ok(frame)
     }
 
-    /// Moves the last frame's cells (outlines and labels) by the field's shift `s` (the
-    /// labels of a cell in `own` by its own shift beyond, which its outline has already
-    /// made: [`drift::cell_shifts`]). An
-    /// outline carried partly out of the `w`×`h` frame is scaled about its centre until
-    /// it fits (a similarity keeps it simple; the evolution then fills what shows of the
-    /// cell); one whose centre left the frame ends its track, as a cell that left it.
+    /// Moves the last frame's cells (outlines and labels) by the field's shift `s`, a
+    /// cell in `own` by its own shift beyond it too ([`drift::cell_shifts`]). An outline
+    /// carried partly out of the `w`×`h` frame is scaled about its centre until it fits
+    /// (a similarity keeps it simple; the evolution then fills what shows of the cell);
+    /// one whose centre left the frame ends its track, as a cell that left it.
     fn follow(&mut self, s: (i32, i32), own: &HashMap<u32, (i32, i32)>, w: usize, h: usize) {
-        let d = Point::new(s.0 as f64, s.1 as f64);
+        let shift = |track: u32| {
+            let e = own.get(&track).copied().unwrap_or((0, 0));
+            (s.0 + e.0, s.1 + e.1)
+        };
         let (lo, hi) = (
             Point::new(0.5, 0.5),
             Point::new(w as f64 - 0.5, h as f64 - 0.5),
         );
         let inside = |p: Point| (lo.x..=hi.x).contains(&p.x) && (lo.y..=hi.y).contains(&p.y);
-        self.live.retain_mut(|(_, ring)| {
+        self.live.retain_mut(|(track, ring)| {
+            let (dx, dy) = shift(*track);
+            let d = Point::new(dx as f64, dy as f64);
             let c = crate::geometry::area2_centroid(ring).1 + d;
             if !inside(c) {
                 return false;
@@ -608,8 +602,8 @@ impl Tracker {
         });
         let mut moved = vec![0u32; w * h];
         for (i, &l) in self.labels.iter().enumerate() {
-            let e = own.get(&l).copied().unwrap_or((0, 0));
-            let (x, y) = ((i % w) as i32 + s.0 + e.0, (i / w) as i32 + s.1 + e.1);
+            let (dx, dy) = shift(l);
+            let (x, y) = ((i % w) as i32 + dx, (i / w) as i32 + dy);
             if l != 0 && (0..w as i32).contains(&x) && (0..h as i32).contains(&y) {
                 moved[y as usize * w + x as usize] = l;
             }
@@ -727,10 +721,19 @@ impl Tracker {
     /// The least share of a split's smaller piece that makes it a daughter, not a shred
     /// ([`SISTER_SHARE`] in transmitted light, else [`MIN_DAUGHTER_SHARE`]).
     fn shred_share(&self) -> f64 {
-        match self.settings.params.modality {
-            Modality::PhaseContrast | Modality::Brightfield => SISTER_SHARE,
-            _ => MIN_DAUGHTER_SHARE,
+        if self.transmitted() {
+            SISTER_SHARE
+        } else {
+            MIN_DAUGHTER_SHARE
         }
+    }
+
+    /// Whether the movie is in transmitted light (phase contrast, bright field).
+    fn transmitted(&self) -> bool {
+        matches!(
+            self.settings.params.modality,
+            Modality::PhaseContrast | Modality::Brightfield
+        )
     }
 
     /// The pyramid levels the next frame evolves through: the settings', or the full
