@@ -769,3 +769,51 @@ fn a_mother_seeded_on_both_sides_of_her_waist_on_frame_0_is_one_cell_that_divide
     let born: Vec<Field> = waisted_mother(16.0, 0.0).split_off(2);
     assert_eq!(track(&born), "1 0 2 0\n2 0 2 0\n");
 }
+
+/// A rod growing (frames 0–3) that divides into two sisters a gap apart (frames 4–8),
+/// neither growing; from frame 6 the left one shows a band of background 3 px wide
+/// across its middle (a paler spot inside a cell, or a septum). Bright on dark.
+fn young_sister_with_a_band() -> Vec<Field> {
+    let mother = |half: f64| {
+        (
+            Point::new(48.0 - half, 32.0),
+            Point::new(48.0 + half, 32.0),
+            5.0,
+        )
+    };
+    let mut frames: Vec<Field> = [14.0, 16.0, 18.0, 20.0]
+        .map(|h| blurred(frame(&[mother(h)])))
+        .into();
+    for t in 4..9 {
+        let l = (Point::new(24.0, 32.0), Point::new(41.0, 32.0), 5.0);
+        let r = (Point::new(55.0, 32.0), Point::new(72.0, 32.0), 5.0);
+        let mut f = frame(&[l, r]);
+        if t >= 6 {
+            for x in [31.7, 32.5, 33.3] {
+                f = with_line(f, Point::new(x, 25.0), Point::new(x, 39.0), 0.15);
+            }
+        }
+        frames.push(blurred(f));
+    }
+    frames
+}
+
+#[test]
+fn a_rod_that_has_not_grown_since_its_birth_does_not_divide_again() {
+    let movie = young_sister_with_a_band();
+    // Fluorescence: the band parts the left sister into two cells.
+    assert_eq!(
+        track_as(&movie, Polarity::Bright, Modality::Fluorescence),
+        "1 0 3 0\n2 4 5 1\n3 4 8 1\n4 6 8 2\n5 6 8 2\n"
+    );
+    // Phase contrast (dark cells, the frames inverted): a rod divides at about twice
+    // its birth size, and this one has not grown; it stays one cell.
+    let dark: Vec<Field> = movie
+        .into_iter()
+        .map(|f| Field::new(W, H, f.data.iter().map(|v| 1.0 - v).collect()))
+        .collect();
+    assert_eq!(
+        track_as(&dark, Polarity::Dark, Modality::PhaseContrast),
+        "1 0 3 0\n2 4 8 1\n3 4 8 1\n"
+    );
+}

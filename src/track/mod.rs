@@ -130,6 +130,22 @@ pub const EARLIER_NARROWING: f64 = 0.05;
 /// bends beyond [`EARLIER_TURN`]: the sharper the notch, the surer it is two caps.
 pub const EARLIER_NARROWING_PER_TURN: f64 = 0.15;
 
+/// In transmitted light (phase contrast, bright field), a cell born of a division
+/// divides again only once its area or its length grew by this factor since its first
+/// frame: a rod divides at about twice its birth size, while the carried outline of a
+/// rod a frame or two old pinches at paler spots along it. On a real dense colony, most
+/// wrong splits were of mothers that had not grown 1.2 times in area; a real E. coli
+/// movie's mothers had grown 1.29–1.75 times (10th–90th percentile) and synthetic rods'
+/// 1.6–1.9. The length stands in for the area, which a forming septum eats into
+/// (docs/decisions.md, 2026-12-07).
+pub const MIN_GROWTH: f64 = 1.3;
+
+/// A division's children are measured at birth for [`MIN_GROWTH`] only when their
+/// mother had been tracked for at least this many frames: a "division" in the first
+/// frames after a cell was found is often cells found as one coming apart, the
+/// "children" full-grown cells.
+pub const BORN_AFTER: usize = 3;
+
 /// In transmitted light (phase contrast, bright field), a new cell (no track before it)
 /// smaller than this share of the frame's typical cell (the area-weighted median: the
 /// size of the cell a random cell pixel lies in) is a speck, not a cell, unless it
@@ -353,6 +369,9 @@ pub struct Tracker {
     /// The necks of the last frame's cells that were not cut, by track, each with the
     /// neck's [`Neck::narrow`] the frame before ([`Tracker::date`]).
     necks: HashMap<u32, (Neck, Option<f64>)>,
+    /// The size each track born of a division had in its first frame ([`MIN_GROWTH`]);
+    /// a tracker resumed after a correction knows none, as it knows no necks.
+    born: HashMap<u32, Size>,
 }
 
 impl Tracker {
@@ -370,6 +389,7 @@ impl Tracker {
             previous: None,
             apart: Vec::new(),
             necks: HashMap::new(),
+            born: HashMap::new(),
         }
     }
 
@@ -483,7 +503,15 @@ impl Tracker {
         // neck into two ([`Tracker::date`]).
         let mut necks: HashMap<u32, (Neck, Option<f64>)> = HashMap::new();
         let mut neck_cut: Vec<u32> = Vec::new();
-        for (owner, group) in groups {
+        for (owner, mut group) in groups {
+            // A rod that has not grown since its birth does not divide again: its pieces
+            // are one cell, and no neck of it is cut.
+            let unripe = owner.is_some_and(|k| self.unripe(k, &group));
+            if unripe && group.len() > 1 {
+                if let Some(m) = model.as_deref() {
+                    group = as_one(group, m);
+                }
+            }
             let single = group.len() == 1;
             // Sisters touching end to end never pinch apart in the image: cut at necks.
             let mut cut: Vec<TrackedObject> = Vec::with_capacity(group.len());
@@ -494,6 +522,7 @@ impl Tracker {
                     continue;
                 }
                 let neck = match neck::cut_or_measure(&o.ring, image) {
+                    Ok(_) if unripe => None,
                     Ok(rings) => {
                         if let (Some(track), true, 2) = (owner, single, rings.len()) {
                             neck_cut.push(track);
@@ -557,6 +586,8 @@ impl Tracker {
             .iter()
             .map(|o| (o.track, o.ring.clone()))
             .collect();
+        let live: HashSet<u32> = self.live.iter().map(|(k, _)| *k).collect();
+        self.born.retain(|k, _| live.contains(k));
         self.previous = Some(scaled);
         self.frame += 1;
         Ok(frame)
@@ -794,6 +825,16 @@ impl Tracker {
             .is_some_and(|k| k.parent == 0 && k.first > 0 && k.first + 1 == t)
     }
 
+    /// Whether `track`, seen as the cells of `group` in this frame, is a rod born of a
+    /// division that has not yet grown by [`MIN_GROWTH`] (transmitted light only).
+    fn unripe(&self, track: u32, group: &[TrackedObject]) -> bool {
+        self.transmitted()
+            && self.born.get(&track).is_some_and(|b| {
+                let now = Size::of(group);
+                now.area < MIN_GROWTH * b.area && now.length < MIN_GROWTH * b.length
+            })
+    }
+
     /// Frame 0's touching pieces that are one rod its seeds cut in two, joined; returns
     /// the joined outlines. Each pair of touching pieces (each piece in one pair, the
     /// longest contacts first) whose union is a rod no wider than [`JOIN_ROD_WIDE`] of
@@ -948,6 +989,17 @@ impl Tracker {
             // The lobes are the children a frame younger: each near its own.
             if far(&a, c0).max(far(&b, c1)) > neck.width {
                 continue;
+            }
+            if self
+                .lineage
+                .get(d.parent)
+                .is_some_and(|p| p.first + BORN_AFTER < t)
+            {
+                self.born.insert(d.children[0], Size::of([&a]));
+                self.born.insert(d.children[1], Size::of([&b]));
+            } else {
+                self.born.remove(&d.children[0]);
+                self.born.remove(&d.children[1]);
             }
             let earlier = Division { frame: t - 1, ..d };
             self.lineage.redate(&earlier);
@@ -1119,6 +1171,16 @@ impl Tracker {
             }
             (Some(parent), _) => {
                 let children = [self.lineage.start(t, parent), self.lineage.start(t, parent)];
+                // A mother seen a frame or two may have been cells found as one.
+                if self
+                    .lineage
+                    .get(parent)
+                    .is_some_and(|p| p.first + BORN_AFTER <= t)
+                {
+                    for (o, c) in group.iter().zip(children) {
+                        self.born.insert(c, Size::of([o]));
+                    }
+                }
                 frame.divisions.push(Division {
                     frame: t,
                     parent,
@@ -1136,6 +1198,73 @@ impl Tracker {
             frame.objects.push(o);
         }
     }
+}
+
+/// The pieces of one cell as one outline: each joined to the largest across the gap
+/// where they meet ([`partition::united`]); a piece that does not meet it stays apart.
+fn as_one(mut pieces: Vec<TrackedObject>, model: &ImageModel) -> Vec<TrackedObject> {
+    let (w, h) = model.size();
+    pieces.sort_by(|a, b| b.area.total_cmp(&a.area));
+    let rest = pieces.split_off(1.min(pieces.len()));
+    let Some(mut one) = pieces.pop() else {
+        return rest;
+    };
+    let mut out = vec![];
+    for p in rest {
+        let labels = label_raster(&[(1, one.ring.as_slice()), (2, p.ring.as_slice())], w, h);
+        match partition::united(&labels, 1, 2, model) {
+            Some(ring) => one = object(ring),
+            None => out.push(p),
+        }
+    }
+    out.insert(0, one);
+    out
+}
+
+/// How large a cell is, for telling whether it grew ([`MIN_GROWTH`]).
+#[derive(Clone, Copy, Debug)]
+struct Size {
+    area: f64,
+    /// The extent of its outline's points along their principal axis: a rod's length
+    /// holds while a forming septum eats into its area.
+    length: f64,
+}
+
+impl Size {
+    /// The size of the cell seen as `pieces` (one, or the pieces it came apart in).
+    fn of<'a>(pieces: impl IntoIterator<Item = &'a TrackedObject>) -> Size {
+        let pieces: Vec<&TrackedObject> = pieces.into_iter().collect();
+        let rings: Vec<&[Point]> = pieces.iter().map(|o| o.ring.as_slice()).collect();
+        Size {
+            area: pieces.iter().map(|o| o.area).sum(),
+            length: length(&rings),
+        }
+    }
+}
+
+/// The extent of the points of `rings` along their principal axis.
+fn length(rings: &[&[Point]]) -> f64 {
+    let (mut n, mut sx, mut sy) = (0.0, 0.0, 0.0);
+    for p in rings.iter().flat_map(|r| r.iter()) {
+        (n, sx, sy) = (n + 1.0, sx + p.x, sy + p.y);
+    }
+    if n == 0.0 {
+        return 0.0;
+    }
+    let (mx, my) = (sx / n, sy / n);
+    let (mut xx, mut yy, mut xy) = (0.0, 0.0, 0.0);
+    for p in rings.iter().flat_map(|r| r.iter()) {
+        let (dx, dy) = (p.x - mx, p.y - my);
+        (xx, yy, xy) = (xx + dx * dx, yy + dy * dy, xy + dx * dy);
+    }
+    let angle = 0.5 * (2.0 * xy).atan2(xx - yy);
+    let axis = Point::new(angle.cos(), angle.sin());
+    let (lo, hi) = rings
+        .iter()
+        .flat_map(|r| r.iter())
+        .map(|p| (p.x - mx) * axis.x + (p.y - my) * axis.y)
+        .fold((f64::MAX, f64::MIN), |(lo, hi), s| (lo.min(s), hi.max(s)));
+    hi - lo
 }
 
 /// A cell of outline `ring` (region on the left), not yet given its track.

@@ -239,6 +239,14 @@ impl Cells {
         self.deepest.get(&l).is_some_and(|&(d, _)| d > 0.0)
     }
 
+    /// The outline of `a` and `b` as one cell, the `bridge` pixels between them theirs.
+    fn union_across(&mut self, a: u32, b: u32, bridge: &[usize]) -> Option<Vec<Point>> {
+        for &p in bridge {
+            self.labels[p] = a;
+        }
+        self.union_ring(a, b)
+    }
+
     /// The outline of cells `a` and `b` together, in frame coordinates (region on the
     /// left), followed from the deepest pixel of their union.
     fn union_ring(&self, a: u32, b: u32) -> Option<Vec<Point>> {
@@ -533,27 +541,14 @@ pub fn joined_rings(labels: &[u32], roots: &[u32], model: &ImageModel) -> Vec<(u
 /// [`REJOIN_SHARE`] of the weaker core's). Returns the outline of their union with the
 /// gap between.
 pub fn rejoined(labels: &[u32], a: u32, b: u32, model: &ImageModel) -> Option<Vec<Point>> {
-    let (fw, fh) = model.size();
-    if labels.len() != fw * fh || a == b {
-        return None;
-    }
-    let mut bx = [usize::MAX, usize::MAX, 0, 0];
-    for (i, &l) in labels.iter().enumerate() {
-        if l == a || l == b {
-            let (x, y) = (i % fw, i / fw);
-            bx = [bx[0].min(x), bx[1].min(y), bx[2].max(x), bx[3].max(y)];
-        }
-    }
-    if bx[0] == usize::MAX {
-        return None;
-    }
-    let mut cells = Cells::new(labels, model, &[a.min(b), a.max(b)], bx);
+    let mut cells = pair_window(labels, a, b, model)?;
     let (w, h) = (cells.w, cells.h);
     let core = cells.core_means();
     let weaker = core.get(&a)?.min(*core.get(&b)?);
     let thinner = cells.thinner(a, b);
     // Where they meet: the pixels of each run from one to the other and the gap between.
     let view = model.level(0);
+    let (fw, _) = model.size();
     let frame_index = |i: usize| (cells.origin.1 + i / w) * fw + cells.origin.0 + i % w;
     let mut bridge: Vec<usize> = Vec::new();
     let (mut runs, mut sum, mut n) = (0usize, 0.0, 0usize);
@@ -574,10 +569,45 @@ pub fn rejoined(labels: &[u32], a: u32, b: u32, model: &ImageModel) -> Option<Ve
     if !(seamless && runs as f64 >= REJOIN_CONTACT * thinner) {
         return None;
     }
-    for p in bridge {
-        cells.labels[p] = a;
+    cells.union_across(a, b, &bridge)
+}
+
+/// The outline of cells `a` and `b` of the label raster `labels` (the model's size) as
+/// one cell, the gaps of at most [`REJOIN_GAP`] pixels where they meet filled; `None`
+/// when they do not meet. Whatever the image shows between them: the caller has judged
+/// them one cell ([`crate::track::Tracker`]: a rod too young to divide).
+pub fn united(labels: &[u32], a: u32, b: u32, model: &ImageModel) -> Option<Vec<Point>> {
+    let mut cells = pair_window(labels, a, b, model)?;
+    let (w, h) = (cells.w, cells.h);
+    let mut bridge: Vec<usize> = Vec::new();
+    let mut runs = 0usize;
+    meeting_runs(&cells.labels, w, h, [a, b], |_, gap| {
+        runs += 1;
+        bridge.extend_from_slice(gap);
+    });
+    if runs == 0 {
+        return None;
     }
-    cells.union_ring(a, b)
+    cells.union_across(a, b, &bridge)
+}
+
+/// The window of `labels` (the model's size) that holds cells `a` and `b`.
+fn pair_window(labels: &[u32], a: u32, b: u32, model: &ImageModel) -> Option<Cells> {
+    let (fw, fh) = model.size();
+    if labels.len() != fw * fh || a == b {
+        return None;
+    }
+    let mut bx = [usize::MAX, usize::MAX, 0, 0];
+    for (i, &l) in labels.iter().enumerate() {
+        if l == a || l == b {
+            let (x, y) = (i % fw, i / fw);
+            bx = [bx[0].min(x), bx[1].min(y), bx[2].max(x), bx[3].max(y)];
+        }
+    }
+    if bx[0] == usize::MAX {
+        return None;
+    }
+    Some(Cells::new(labels, model, &[a.min(b), a.max(b)], bx))
 }
 
 /// Whether cells `pair` of the label raster `labels` (`w`×`h`) meet: a pixel of one
