@@ -825,6 +825,14 @@ impl Tracker {
             .is_some_and(|k| k.parent == 0 && k.first > 0 && k.first + 1 == t)
     }
 
+    /// Whether the children `parent` has at frame `birth` are measured at birth
+    /// ([`BORN_AFTER`]): a mother seen a frame or two may have been cells found as one.
+    fn measured_at_birth(&self, parent: u32, birth: usize) -> bool {
+        self.lineage
+            .get(parent)
+            .is_some_and(|p| p.first + BORN_AFTER <= birth)
+    }
+
     /// Whether `track`, seen as the cells of `group` in this frame, is a rod born of a
     /// division that has not yet grown by [`MIN_GROWTH`] (transmitted light only).
     fn unripe(&self, track: u32, group: &[TrackedObject]) -> bool {
@@ -990,11 +998,7 @@ impl Tracker {
             if far(&a, c0).max(far(&b, c1)) > neck.width {
                 continue;
             }
-            if self
-                .lineage
-                .get(d.parent)
-                .is_some_and(|p| p.first + BORN_AFTER < t)
-            {
+            if self.measured_at_birth(d.parent, t - 1) {
                 self.born.insert(d.children[0], Size::of([&a]));
                 self.born.insert(d.children[1], Size::of([&b]));
             } else {
@@ -1171,12 +1175,7 @@ impl Tracker {
             }
             (Some(parent), _) => {
                 let children = [self.lineage.start(t, parent), self.lineage.start(t, parent)];
-                // A mother seen a frame or two may have been cells found as one.
-                if self
-                    .lineage
-                    .get(parent)
-                    .is_some_and(|p| p.first + BORN_AFTER <= t)
-                {
+                if self.measured_at_birth(parent, t) {
                     for (o, c) in group.iter().zip(children) {
                         self.born.insert(c, Size::of([o]));
                     }
@@ -1242,29 +1241,16 @@ impl Size {
     }
 }
 
-/// The extent of the points of `rings` along their principal axis.
+/// The extent of the points of `rings` along the principal axis of the region they
+/// cover ([`neck::elongation_of`]).
 fn length(rings: &[&[Point]]) -> f64 {
-    let (mut n, mut sx, mut sy) = (0.0, 0.0, 0.0);
-    for p in rings.iter().flat_map(|r| r.iter()) {
-        (n, sx, sy) = (n + 1.0, sx + p.x, sy + p.y);
-    }
-    if n == 0.0 {
-        return 0.0;
-    }
-    let (mx, my) = (sx / n, sy / n);
-    let (mut xx, mut yy, mut xy) = (0.0, 0.0, 0.0);
-    for p in rings.iter().flat_map(|r| r.iter()) {
-        let (dx, dy) = (p.x - mx, p.y - my);
-        (xx, yy, xy) = (xx + dx * dx, yy + dy * dy, xy + dx * dy);
-    }
-    let angle = 0.5 * (2.0 * xy).atan2(xx - yy);
-    let axis = Point::new(angle.cos(), angle.sin());
+    let (_, _, axis) = neck::elongation_of(rings);
     let (lo, hi) = rings
         .iter()
         .flat_map(|r| r.iter())
-        .map(|p| (p.x - mx) * axis.x + (p.y - my) * axis.y)
+        .map(|p| p.x * axis.x + p.y * axis.y)
         .fold((f64::MAX, f64::MIN), |(lo, hi), s| (lo.min(s), hi.max(s)));
-    hi - lo
+    (hi - lo).max(0.0)
 }
 
 /// A cell of outline `ring` (region on the left), not yet given its track.
