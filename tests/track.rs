@@ -5,6 +5,7 @@
 
 use topocontour::evolution::{Field, Modality, Params, Polarity, Shape};
 use topocontour::geometry::Point;
+use topocontour::io::movie::normalise;
 use topocontour::track::{TrackSettings, Tracker};
 
 const W: usize = 96;
@@ -815,5 +816,52 @@ fn a_rod_that_has_not_grown_since_its_birth_does_not_divide_again() {
     assert_eq!(
         track_as(&dark, Polarity::Dark, Modality::PhaseContrast),
         "1 0 3 0\n2 4 8 1\n3 4 8 1\n"
+    );
+}
+
+/// Phase contrast: a dark rod (0.05) from `x0` to `x1` at y = 20, wrapped in a bright halo
+/// 4 px wide, on grey ground (0.6) with a dark band of uneven light (0.25 at its
+/// middle, soft-edged) across the lower half; uniform noise (±0.15) from `seed`, the
+/// values clipped to [0, 1] as a camera's are and the frame normalised as a movie's.
+fn rod_beside_a_band(x0: f64, x1: f64, seed: u64) -> Field {
+    let mut state = seed;
+    let mut noise = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((state >> 33) as f64 / (1u64 << 31) as f64 - 0.5) as f32 * 0.3
+    };
+    let (a, b) = (Point::new(x0, 20.0), Point::new(x1, 20.0));
+    let data = (0..W * H)
+        .map(|i| {
+            let p = Point::new((i % W) as f64 + 0.5, (i / W) as f64 + 0.5);
+            let t = ((p.x - a.x) / (b.x - a.x)).clamp(0.0, 1.0);
+            let d = p.dist(a + (b - a) * t);
+            let band = ((p.y - 34.0) / 10.0).clamp(0.0, 1.0) as f32;
+            let v = if d <= 4.0 {
+                0.05
+            } else if d <= 8.0 {
+                0.95
+            } else {
+                0.6 - 0.35 * band
+            };
+            (v + noise()).clamp(0.0, 1.0)
+        })
+        .collect();
+    let mut f = Field::new(W, H, data);
+    normalise(&mut f);
+    f
+}
+
+#[test]
+fn in_phase_contrast_a_dark_band_of_uneven_light_is_not_a_cell_and_the_rod_beside_it_is() {
+    // Seeds settle on the band too, into one wide blob or many small ones; none is
+    // wrapped in a halo, and none may start a track or spread over the band.
+    let frames: Vec<Field> = (0..3)
+        .map(|t| rod_beside_a_band(20.0 + t as f64, 44.0 + t as f64, 8 + t as u64))
+        .collect();
+    assert_eq!(
+        track_as(&frames, Polarity::Dark, Modality::PhaseContrast),
+        "1 0 2 0\n"
     );
 }

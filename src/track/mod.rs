@@ -77,7 +77,7 @@ pub mod side;
 pub use lineage::{Division, Lineage, Track};
 
 use crate::evolution::{find_seeds, EvolveError, Evolver, Field, Mode, Params, Shape};
-use crate::geometry::Point;
+use crate::geometry::{signed_area, Point};
 use crate::image::{ImageModel, Modality};
 use crate::topology::TopologyEvent;
 use carry::{
@@ -779,21 +779,39 @@ impl Tracker {
 
     /// `groups` without the cells that do not stand out from their surroundings
     /// ([`contrast`]): new cells below [`contrast::MIN_SEPARATION`], carried ones below
-    /// [`contrast::MIN_CARRIED_SEPARATION`] ([`contrast::standing_out`]).
+    /// [`contrast::MIN_CARRIED_SEPARATION`], and in phase contrast new cells without a
+    /// halo of [`contrast::MIN_HALO`] ([`contrast::standing_out`]).
     fn without_faint(
         &self,
         groups: Vec<(Option<u32>, Vec<TrackedObject>)>,
         image: &Field,
     ) -> Vec<(Option<u32>, Vec<TrackedObject>)> {
         let polarity = self.settings.params.polarity;
-        let objects: Vec<(&[Point], f64)> = groups
+        let phase = self.settings.params.modality == Modality::PhaseContrast;
+        let before: HashMap<u32, f64> = self
+            .live
+            .iter()
+            .map(|(k, ring)| (*k, signed_area(ring).abs()))
+            .collect();
+        let objects: Vec<(&[Point], contrast::Need)> = groups
             .iter()
             .flat_map(|(owner, g)| {
-                let least = match owner {
-                    Some(_) => contrast::MIN_CARRIED_SEPARATION,
-                    None => contrast::MIN_SEPARATION,
+                let area: f64 = g.iter().map(|o| o.area).sum();
+                // A carried cell that spread far over its last outline is judged as new.
+                let spread = owner
+                    .and_then(|k| before.get(&k))
+                    .is_some_and(|&a| area > contrast::SPREAD * a);
+                let need = match owner {
+                    Some(_) if !spread => contrast::Need {
+                        separation: contrast::MIN_CARRIED_SEPARATION,
+                        halo: None,
+                    },
+                    _ => contrast::Need {
+                        separation: contrast::MIN_SEPARATION,
+                        halo: phase.then_some(contrast::MIN_HALO),
+                    },
                 };
-                g.iter().map(move |o| (o.ring.as_slice(), least))
+                g.iter().map(move |o| (o.ring.as_slice(), need))
             })
             .collect();
         let keep = contrast::standing_out(&objects, image, polarity);
