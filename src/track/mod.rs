@@ -51,7 +51,10 @@
 //! - a new cell (on frame 0 or picked up later) that does not stand out from the band
 //!   around it ([`contrast`]) is dropped: seeds on a gently darker corner of uneven
 //!   light settle into such blobs; a carried cell is dropped, ending its track, below
-//!   the blobs' own bound (a cell that faded, or a blob that grew from a speck).
+//!   the blobs' own bound (a cell that faded, or a blob that grew from a speck); in
+//!   phase contrast a new cell must also be wrapped in its halo (a dark band of uneven
+//!   light and the blobs on it are not), and a carried cell that more than doubled in a
+//!   frame is judged as a new one.
 //!
 //! - the cells that touch another are divided again on each frame's image
 //!   ([`partition`]: a marker watershed from their cores, so the line between two cells
@@ -780,7 +783,8 @@ impl Tracker {
     /// `groups` without the cells that do not stand out from their surroundings
     /// ([`contrast`]): new cells below [`contrast::MIN_SEPARATION`], carried ones below
     /// [`contrast::MIN_CARRIED_SEPARATION`], and in phase contrast new cells without a
-    /// halo of [`contrast::MIN_HALO`] ([`contrast::standing_out`]).
+    /// halo of [`contrast::MIN_HALO`] ([`contrast::standing_out`]); a carried cell more
+    /// than [`contrast::SPREAD`] times its last area is judged as a new one.
     fn without_faint(
         &self,
         groups: Vec<(Option<u32>, Vec<TrackedObject>)>,
