@@ -487,6 +487,18 @@ fn a_cell_leaving_ends_its_track() {
     assert_eq!(track(&frames), "1 0 5 0\n2 0 2 0\n");
 }
 
+/// Uniform noise in ±0.15, a value per call, drawn from `seed` (a linear congruential
+/// generator: the movies are the same on every machine).
+fn uniform_noise(seed: u64) -> impl FnMut() -> f32 {
+    let mut state = seed;
+    move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((state >> 33) as f64 / (1u64 << 31) as f64 - 0.5) as f32 * 0.3
+    }
+}
+
 /// `cells(t)` for `frames` frames, lit unevenly: the upper right corner brighter by up to
 /// `ramp` (a broad ramp), with uniform noise (±0.15) drawn from `seed`.
 fn on_a_ramp(
@@ -495,13 +507,7 @@ fn on_a_ramp(
     seed: u64,
     cells: impl Fn(usize) -> Vec<Capsule>,
 ) -> Vec<Field> {
-    let mut state = seed;
-    let mut noise = move || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((state >> 33) as f64 / (1u64 << 31) as f64 - 0.5) as f32 * 0.3
-    };
+    let mut noise = uniform_noise(seed);
     (0..frames)
         .map(|t| {
             let mut f = frame(&cells(t));
@@ -824,13 +830,7 @@ fn a_rod_that_has_not_grown_since_its_birth_does_not_divide_again() {
 /// wide) across the lower half; uniform noise (±0.15) from `seed`, the
 /// values clipped to [0, 1] as a camera's are and the frame normalised as a movie's.
 fn rod_beside_a_band(x0: f64, x1: f64, seed: u64) -> Field {
-    let mut state = seed;
-    let mut noise = move || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((state >> 33) as f64 / (1u64 << 31) as f64 - 0.5) as f32 * 0.3
-    };
+    let mut noise = uniform_noise(seed);
     let (a, b) = (Point::new(x0, 20.0), Point::new(x1, 20.0));
     let data = (0..W * H)
         .map(|i| {
