@@ -156,7 +156,7 @@ pub fn edge_field(
 }
 
 /// The median of `v` (not empty), which it reorders.
-fn median(v: &mut [f32]) -> f64 {
+pub(crate) fn median(v: &mut [f32]) -> f64 {
     let m = v.len() / 2;
     v.select_nth_unstable_by(m, f32::total_cmp);
     v[m] as f64

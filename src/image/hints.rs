@@ -87,7 +87,9 @@ pub(crate) fn hints(field: &Field, init: &[Shape], outlines: bool) -> Hints {
     }
 }
 
-fn median(v: &mut [f64]) -> Option<f64> {
+/// The median of `v` (the upper one of an even count; `None` when empty), which it
+/// reorders.
+pub(crate) fn median(v: &mut [f64]) -> Option<f64> {
     if v.is_empty() {
         return None;
     }

@@ -20,7 +20,8 @@
 //! 2026-12-07, ninth session).
 
 use crate::geometry::Point;
-use crate::image::{Field, Polarity};
+use crate::image::hints::median;
+use crate::image::{edges, Field, Polarity};
 use crate::track::carry::label_raster;
 use std::collections::HashSet;
 
@@ -99,8 +100,7 @@ pub fn halo(
         return None;
     }
     // The median: a blob beside a cell has that cell's halo on one side only.
-    let mid = around.len() / 2;
-    let (_, &mut mo, _) = around.select_nth_unstable_by(mid, f64::total_cmp);
+    let mo = median(&mut around)?;
     let (beyond, contrast) = match polarity {
         Polarity::Dark => (mo - background, background - mi),
         Polarity::Bright => (background - mo, mi - background),
@@ -118,12 +118,7 @@ pub fn background(raster: &[u32], image: &Field) -> Option<f64> {
         .filter(|&(_, &l)| l == 0)
         .map(|(&v, _)| v)
         .collect();
-    if free.is_empty() {
-        return None;
-    }
-    let mid = free.len() / 2;
-    let (_, m, _) = free.select_nth_unstable_by(mid, f32::total_cmp);
-    Some(*m as f64)
+    (!free.is_empty()).then(|| edges::median(&mut free))
 }
 
 /// The pixels of the object labelled `label` in `raster`, outline `ring`.
@@ -206,15 +201,17 @@ pub fn standing_out(objects: &[(&[Point], Need)], image: &Field, polarity: Polar
             }
             let label = k as u32 + 1;
             // Either measure alone can say no: blobs tiling a band hide the ground
-            // just outside each other, not all of it further out.
-            let halo = match (need.halo, level) {
-                (Some(least), Some(b)) => {
+            // just outside each other, not all of it further out. The halo is read only
+            // where the separation did not say no already.
+            let separated =
+                separation(ring, label, &raster, image, polarity).map(|z| z >= need.separation);
+            let halo = match (need.halo, level, separated) {
+                (_, _, Some(false)) => None,
+                (Some(least), Some(b), _) => {
                     halo(ring, label, &raster, image, polarity, b).map(|z| z >= least)
                 }
                 _ => Some(true),
             };
-            let separated =
-                separation(ring, label, &raster, image, polarity).map(|z| z >= need.separation);
             match (separated, halo) {
                 (Some(false), _) | (_, Some(false)) => {
                     dropped[k] = true;
