@@ -865,3 +865,31 @@ fn in_phase_contrast_a_dark_band_of_uneven_light_is_not_a_cell_and_the_rod_besid
         "1 0 2 0\n"
     );
 }
+
+#[test]
+fn in_phase_contrast_rods_pushed_against_their_neighbours_keep_their_tracks() {
+    // Four dark rods of different lengths side by side, 1 px apart; the right pair is
+    // pushed 7 px right a frame while the left pair stays (a colony growing between
+    // them). No one shift fits the field, and a contour left where its rod was lands
+    // across the gap and its neighbour; each rod's own shift is followed.
+    let ends = [(14.0, 34.0), (18.0, 44.0), (10.0, 28.0), (16.0, 40.0)];
+    let frames: Vec<Field> = (0..4)
+        .map(|t| {
+            let rods: Vec<Capsule> = [20.0, 31.0, 42.0, 53.0]
+                .iter()
+                .zip(ends)
+                .enumerate()
+                .map(|(k, (&x, (y0, y1)))| {
+                    let x = x + if k >= 2 { 7.0 * t as f64 } else { 0.0 };
+                    (Point::new(x, y0), Point::new(x, y1), 5.0)
+                })
+                .collect();
+            let f = blurred(frame(&rods));
+            Field::new(W, H, f.data.iter().map(|v| 1.0 - v).collect())
+        })
+        .collect();
+    assert_eq!(
+        track_as(&frames, Polarity::Dark, Modality::PhaseContrast),
+        "1 0 3 0\n2 0 3 0\n3 0 3 0\n4 0 3 0\n"
+    );
+}

@@ -134,10 +134,22 @@ pub fn field_shift(before: &Field, after: &Field, cells: &[u32]) -> (i32, i32) {
 /// against each other: each cell's own shift is then searched ([`cell_shifts`]). A
 /// real colony whose pad slid 10–100 px a frame had its cells 3–18 px off one shift for
 /// all; a stage's drift of a few pixels moves every cell alike.
+///
+/// In transmitted light the tracker searches each cell's own shift every frame, moved
+/// field or not: rods packed in a growing colony push each other about. In a real dense
+/// colony (divbac26, docs/decisions.md 2026-12-07, tenth session) the reference cells
+/// moved a median 9.8 px a frame beyond the field's shift (90th percentile 24 px), most
+/// of a rod's width: a carried contour landed across its neighbour, leaked into it and
+/// split off a piece of it as a false daughter. Nuclei are not searched so: a shift
+/// found for a dividing nucleus lands its contour on one daughter, and the division is
+/// missed (HeLa division F1 0.62 → 0.59, sim_plus_01 0.98 → 0.96 when searched every
+/// frame).
 pub const CELL_FROM: i32 = 8;
 
-/// How far each cell's own shift is searched beyond the field's (pixels, each way).
-pub const CELL_REACH: i32 = 6;
+/// How far each cell's own shift is searched beyond the field's (pixels, each way). On
+/// the dense colony above, TRA was 0.636 searching ±6, 0.717 at ±10 and 0.680 at ±14:
+/// farther, a rod matches its look-alike neighbour.
+pub const CELL_REACH: i32 = 10;
 
 /// Per cell of `labels` (a label raster of `before`), the shift beyond the field's `s`
 /// that best maps its pixels and a 2 px band around them onto `after` (the mean squared
@@ -196,13 +208,13 @@ pub fn cell_shifts(
         let level = Level::new(before, after, &samples, 1, pad);
         let cost = |e: (i32, i32)| level.cost((s.0 + e.0, s.1 + e.1));
         let none = cost((0, 0));
+        // Nearest shifts first, so of equal costs the shortest move wins: a rod matches
+        // its look-alike neighbour as well as its own new place.
         let mut best = (none, (0, 0));
-        for dy in -CELL_REACH..=CELL_REACH {
-            for dx in -CELL_REACH..=CELL_REACH {
-                let c = cost((dx, dy));
-                if c < best.0 {
-                    best = (c, (dx, dy));
-                }
+        for (dx, dy) in by_distance(CELL_REACH) {
+            let c = cost((dx, dy));
+            if c < best.0 {
+                best = (c, (dx, dy));
             }
         }
         if best.1 != (0, 0) && best.0 < MIN_GAIN * none {
@@ -210,6 +222,16 @@ pub fn cell_shifts(
         }
     }
     out
+}
+
+/// Every shift of at most `reach` along each axis, nearest to none first (ties in
+/// row order).
+fn by_distance(reach: i32) -> Vec<(i32, i32)> {
+    let mut v: Vec<(i32, i32)> = (-reach..=reach)
+        .flat_map(|dy| (-reach..=reach).map(move |dx| (dx, dy)))
+        .collect();
+    v.sort_by_key(|&(dx, dy)| (dx * dx + dy * dy, dy, dx));
+    v
 }
 
 /// The frame's background: its median (read from every [`QUANTILE_STRIDE`]-th pixel).

@@ -425,17 +425,20 @@ impl Tracker {
         if self.labels.len() != w * h {
             self.labels = vec![0; w * h];
         }
-        // How far the field moved since the last frame (a drifting stage).
+        // How far the field moved since the last frame (a drifting stage), and each cell
+        // against it: rods in a colony push each other about every frame, so in
+        // transmitted light each cell's own shift is searched every frame
+        // ([`drift::CELL_FROM`]).
         let mut shift = Point::new(0.0, 0.0);
         let scaled = drift::on_quantiles(image);
         if let Some(before) = self.previous.take() {
             let s = drift::field_shift(&before, &scaled, &self.labels);
-            if s != (0, 0) {
-                let own = if s.0.abs().max(s.1.abs()) >= drift::CELL_FROM {
-                    drift::cell_shifts(&before, &scaled, &self.labels, s)
-                } else {
-                    HashMap::new()
-                };
+            let own = if self.transmitted() || s.0.abs().max(s.1.abs()) >= drift::CELL_FROM {
+                drift::cell_shifts(&before, &scaled, &self.labels, s)
+            } else {
+                HashMap::new()
+            };
+            if s != (0, 0) || !own.is_empty() {
                 self.follow(s, &own, w, h);
                 shift = Point::new(s.0 as f64, s.1 as f64);
             }
