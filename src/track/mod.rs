@@ -143,6 +143,22 @@ pub const EARLIER_NARROWING_PER_TURN: f64 = 0.15;
 /// (docs/decisions.md, 2026-12-07).
 pub const MIN_GROWTH: f64 = 1.3;
 
+/// In transmitted light, a carried cell's pieces (or the lobes of its neck) are a
+/// division only when each is at least this share of the frame before's typical cell
+/// (the median area, [`TYPICAL_FROM`] cells or more); otherwise they are one cell, and
+/// a piece that cannot be joined back to the largest is dropped. Daughters are born at
+/// about half a mother, 0.6–1.2 of the median cell. In a real dense colony the carried
+/// outline of a mottled rod pinched at its paler spots: 117 of the divisions left both
+/// children on one reference cell, 70 of them with the smaller under 0.4 of the median,
+/// against 26 of 217 that parted reference sisters; trpL's and synthetic colonies'
+/// daughters were 0.59 or more (10th percentile; docs/decisions.md, 2026-12-07, tenth
+/// session).
+pub const MIN_CHILD_OF_TYPICAL: f64 = 0.4;
+
+/// The fewest cells in the frame before for a typical cell ([`MIN_CHILD_OF_TYPICAL`]):
+/// with fewer, one odd cell sets the median.
+pub const TYPICAL_FROM: usize = 8;
+
 /// A division's children are measured at birth for [`MIN_GROWTH`] only when their
 /// mother had been tracked for at least this many frames: a "division" in the first
 /// frames after a cell was found is often cells found as one coming apart, the
@@ -509,14 +525,29 @@ impl Tracker {
         // neck into two ([`Tracker::date`]).
         let mut necks: HashMap<u32, (Neck, Option<f64>)> = HashMap::new();
         let mut neck_cut: Vec<u32> = Vec::new();
+        // The frame before's typical cell ([`MIN_CHILD_OF_TYPICAL`]).
+        let typical = self.typical_area();
+        let too_small = |areas: &[f64]| {
+            typical.is_some_and(|a| areas.iter().any(|&x| x < MIN_CHILD_OF_TYPICAL * a))
+        };
         for (owner, mut group) in groups {
             // A rod that has not grown since its birth does not divide again: its pieces
-            // are one cell, and no neck of it is cut.
-            let unripe = owner.is_some_and(|k| self.unripe(k, &group));
+            // are one cell, and no neck of it is cut. Nor does a carried rod come apart
+            // into a piece far smaller than the colony's cells ([`MIN_CHILD_OF_TYPICAL`]).
+            let small = owner.is_some()
+                && self.transmitted()
+                && group.len() > 1
+                && too_small(&group.iter().map(|o| o.area).collect::<Vec<_>>());
+            let unripe = small || owner.is_some_and(|k| self.unripe(k, &group));
             if unripe && group.len() > 1 {
                 if let Some(m) = model.as_deref() {
                     group = as_one(group, m);
                 }
+            }
+            if small && group.len() > 1 {
+                // The pieces that could not be joined again are no cell of their own.
+                group.sort_by(|x, y| y.area.total_cmp(&x.area));
+                group.truncate(1);
             }
             let single = group.len() == 1;
             // Sisters touching end to end never pinch apart in the image: cut at necks.
@@ -529,6 +560,18 @@ impl Tracker {
                 }
                 let neck = match neck::cut_or_measure(&o.ring, image) {
                     Ok(_) if unripe => None,
+                    Ok(rings)
+                        if owner.is_some()
+                            && self.transmitted()
+                            && too_small(
+                                &rings
+                                    .iter()
+                                    .map(|r| signed_area(r).abs())
+                                    .collect::<Vec<_>>(),
+                            ) =>
+                    {
+                        None
+                    }
                     Ok(rings) => {
                         if let (Some(track), true, 2) = (owner, single, rings.len()) {
                             neck_cut.push(track);
@@ -856,6 +899,21 @@ impl Tracker {
         self.lineage
             .get(parent)
             .is_some_and(|p| p.first + BORN_AFTER <= birth)
+    }
+
+    /// The median area of the frame before's cells, when there were at least
+    /// [`TYPICAL_FROM`] of them.
+    fn typical_area(&self) -> Option<f64> {
+        let mut areas: Vec<f64> = self
+            .live
+            .iter()
+            .map(|(_, r)| signed_area(r).abs())
+            .collect();
+        if areas.len() < TYPICAL_FROM {
+            return None;
+        }
+        let k = areas.len() / 2;
+        Some(*areas.select_nth_unstable_by(k, f64::total_cmp).1)
     }
 
     /// Whether `track`, seen as the cells of `group` in this frame, is a rod born of a
