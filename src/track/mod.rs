@@ -525,19 +525,14 @@ impl Tracker {
         // neck into two ([`Tracker::date`]).
         let mut necks: HashMap<u32, (Neck, Option<f64>)> = HashMap::new();
         let mut neck_cut: Vec<u32> = Vec::new();
-        // The frame before's typical cell ([`MIN_CHILD_OF_TYPICAL`]).
-        let typical = self.typical_area();
-        let too_small = |areas: &[f64]| {
-            typical.is_some_and(|a| areas.iter().any(|&x| x < MIN_CHILD_OF_TYPICAL * a))
-        };
+        // The frame before's typical cell, in transmitted light ([`MIN_CHILD_OF_TYPICAL`]).
+        let typical = self.typical_area().filter(|_| self.transmitted());
         for (owner, mut group) in groups {
             // A rod that has not grown since its birth does not divide again: its pieces
             // are one cell, and no neck of it is cut. Nor does a carried rod come apart
             // into a piece far smaller than the colony's cells ([`MIN_CHILD_OF_TYPICAL`]).
-            let small = owner.is_some()
-                && self.transmitted()
-                && group.len() > 1
-                && too_small(&group.iter().map(|o| o.area).collect::<Vec<_>>());
+            let typical = typical.filter(|_| owner.is_some());
+            let small = group.len() > 1 && under(typical, group.iter().map(|o| o.area));
             let unripe = small || owner.is_some_and(|k| self.unripe(k, &group));
             if unripe && group.len() > 1 {
                 if let Some(m) = model.as_deref() {
@@ -560,18 +555,7 @@ impl Tracker {
                 }
                 let neck = match neck::cut_or_measure(&o.ring, image) {
                     Ok(_) if unripe => None,
-                    Ok(rings)
-                        if owner.is_some()
-                            && self.transmitted()
-                            && too_small(
-                                &rings
-                                    .iter()
-                                    .map(|r| signed_area(r).abs())
-                                    .collect::<Vec<_>>(),
-                            ) =>
-                    {
-                        None
-                    }
+                    Ok(rings) if under(typical, rings.iter().map(|r| signed_area(r).abs())) => None,
                     Ok(rings) => {
                         if let (Some(track), true, 2) = (owner, single, rings.len()) {
                             neck_cut.push(track);
@@ -1280,6 +1264,12 @@ impl Tracker {
             frame.objects.push(o);
         }
     }
+}
+
+/// Whether any of `areas` is under [`MIN_CHILD_OF_TYPICAL`] of the `typical` cell (never
+/// when there is none).
+fn under(typical: Option<f64>, mut areas: impl Iterator<Item = f64>) -> bool {
+    typical.is_some_and(|a| areas.any(|x| x < MIN_CHILD_OF_TYPICAL * a))
 }
 
 /// The pieces of one cell as one outline: each joined to the largest across the gap
