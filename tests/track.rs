@@ -104,6 +104,11 @@ fn with_line(mut f: Field, a: Point, b: Point, v: f32) -> Field {
     f
 }
 
+/// `f` as phase contrast shows it: dark cells on a bright ground.
+fn inverted(f: Field) -> Field {
+    Field::new(W, H, f.data.iter().map(|v| 1.0 - v).collect())
+}
+
 /// `f` blurred by [1 2 1]/4 along x and y (σ ≈ 0.7, a microscope's blur, which
 /// fills the notches where two caps meet with background).
 fn blurred(f: Field) -> Field {
@@ -371,11 +376,7 @@ fn rod_and_speck(speck: f64) -> Vec<Field> {
 fn a_speck_in_transmitted_light_is_no_cell_and_in_fluorescence_is_one() {
     // A speck a tenth of the rod's area: debris in phase contrast or bright field (dark
     // objects, the frames inverted), a small nucleus in fluorescence.
-    let dark = |fs: Vec<Field>| -> Vec<Field> {
-        fs.into_iter()
-            .map(|f| Field::new(W, H, f.data.iter().map(|v| 1.0 - v).collect()))
-            .collect()
-    };
+    let dark = |fs: Vec<Field>| -> Vec<Field> { fs.into_iter().map(inverted).collect() };
     for m in [Modality::PhaseContrast, Modality::Brightfield] {
         assert_eq!(
             track_as(&dark(rod_and_speck(4.0)), Polarity::Dark, m),
@@ -815,10 +816,7 @@ fn a_rod_that_has_not_grown_since_its_birth_does_not_divide_again() {
     );
     // Phase contrast (dark cells, the frames inverted): a rod divides at about twice
     // its birth size, and this one has not grown; it stays one cell.
-    let dark: Vec<Field> = movie
-        .into_iter()
-        .map(|f| Field::new(W, H, f.data.iter().map(|v| 1.0 - v).collect()))
-        .collect();
+    let dark: Vec<Field> = movie.into_iter().map(inverted).collect();
     assert_eq!(
         track_as(&dark, Polarity::Dark, Modality::PhaseContrast),
         "1 0 3 0\n2 4 8 1\n3 4 8 1\n"
@@ -884,8 +882,7 @@ fn in_phase_contrast_rods_pushed_against_their_neighbours_keep_their_tracks() {
                     (Point::new(x, y0), Point::new(x, y1), 5.0)
                 })
                 .collect();
-            let f = blurred(frame(&rods));
-            Field::new(W, H, f.data.iter().map(|v| 1.0 - v).collect())
+            inverted(blurred(frame(&rods)))
         })
         .collect();
     assert_eq!(
@@ -910,8 +907,7 @@ fn in_phase_contrast_a_rod_does_not_divide_into_a_piece_far_smaller_than_the_col
             if t >= 2 {
                 f = with_line(f, Point::new(35.0, 20.0), Point::new(47.0, 20.0), 0.15);
             }
-            let f = blurred(f);
-            Field::new(W, H, f.data.iter().map(|v| 1.0 - v).collect())
+            inverted(blurred(f))
         })
         .collect();
     let text = track_as(&frames, Polarity::Dark, Modality::PhaseContrast);

@@ -181,6 +181,7 @@ pub fn cell_shifts(
     }
     const BAND: i32 = 2;
     let pad = background(after);
+    let shifts = by_distance(CELL_REACH);
     for (l, b) in boxes {
         let mut samples: Vec<(i32, i32)> = Vec::new();
         for y in (b[1] - BAND).max(0)..=(b[3] + BAND).min(h - 1) {
@@ -211,7 +212,7 @@ pub fn cell_shifts(
         // Nearest shifts first, so of equal costs the shortest move wins: a rod matches
         // its look-alike neighbour as well as its own new place.
         let mut best = (none, (0, 0));
-        for (dx, dy) in by_distance(CELL_REACH) {
+        for &(dx, dy) in &shifts {
             let c = cost((dx, dy));
             if c < best.0 {
                 best = (c, (dx, dy));

@@ -896,8 +896,7 @@ impl Tracker {
         if areas.len() < TYPICAL_FROM {
             return None;
         }
-        let k = areas.len() / 2;
-        Some(*areas.select_nth_unstable_by(k, f64::total_cmp).1)
+        crate::image::hints::median(&mut areas)
     }
 
     /// Whether `track`, seen as the cells of `group` in this frame, is a rod born of a
