@@ -41,6 +41,24 @@ pub const JOIN_CONTACT: f64 = 0.8;
 /// contact (two disks pressed 0.4 radii into each other fill 0.94 of their hull).
 pub const JOIN_SOLIDITY: f64 = 0.94;
 
+/// Frame 0: two touching cells whose union is one straight rod — it fills at least this
+/// share of its convex hull and is at least [`JOIN_ROD_ASPECT`] times as long as wide —
+/// are one rod its seeds cut in two on a shorter contact ([`JOIN_ROD_CONTACT`]) and a
+/// fainter middle ([`JOIN_ROD_SHARE`]) than [`JOIN_CONTACT`] and [`JOIN_SHARE`] ask. A
+/// mottled rod's seeds settle on its darker spots, and their fronts meet rounded, with
+/// a paler band between; two rods that touch at an angle or side by side leave notches
+/// their union's hull fills (docs/decisions.md, 2026-12-07, eleventh session).
+pub const JOIN_ROD_SOLIDITY: f64 = 0.85;
+
+/// The least aspect (major over minor axis) of a rod's union ([`JOIN_ROD_SOLIDITY`]).
+pub const JOIN_ROD_ASPECT: f64 = 2.0;
+
+/// The least contact of a rod's two pieces, as a share of the thinner one's width.
+pub const JOIN_ROD_CONTACT: f64 = 0.5;
+
+/// The least score along a rod's two pieces' contact, as a share of the weaker core's.
+pub const JOIN_ROD_SHARE: f64 = 0.6;
+
 /// Sisters that came apart and meet again the next frame are one cell again when their
 /// contact runs at least this share of the thinner one's width (and shows object
 /// between them: [`REJOIN_SHARE`]).
@@ -176,6 +194,21 @@ impl Cells {
 
     /// Whether cells `a` and `b` together are one convex round body ([`JOIN_SOLIDITY`]).
     fn one_body(&self, a: u32, b: u32) -> bool {
+        self.union_shape(a, b).is_some_and(|(solidity, aspect)| {
+            aspect < crate::track::neck::MIN_LOBE_ASPECT && solidity >= JOIN_SOLIDITY
+        })
+    }
+
+    /// Whether cells `a` and `b` together are one straight rod ([`JOIN_ROD_SOLIDITY`]).
+    fn one_rod(&self, a: u32, b: u32) -> bool {
+        self.union_shape(a, b).is_some_and(|(solidity, aspect)| {
+            aspect >= JOIN_ROD_ASPECT && solidity >= JOIN_ROD_SOLIDITY
+        })
+    }
+
+    /// The union of cells `a` and `b`: the share of its convex hull it fills, and its
+    /// aspect (major over minor axis of its second moments). `None` under three pixels.
+    fn union_shape(&self, a: u32, b: u32) -> Option<(f64, f64)> {
         let mut pts = Vec::new();
         let (mut n, mut sx, mut sy, mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         for (i, &l) in self.labels.iter().enumerate() {
@@ -195,14 +228,14 @@ impl Cells {
             (sxx, syy, sxy) = (sxx + x * x, syy + y * y, sxy + x * y);
         }
         if n < 3.0 {
-            return false;
+            return None;
         }
         let (mx, my) = (sx / n, sy / n);
         let (vx, vy, c) = (sxx / n - mx * mx, syy / n - my * my, sxy / n - mx * my);
         let (tr, disc) = (0.5 * (vx + vy), (0.25 * (vx - vy).powi(2) + c * c).sqrt());
         let aspect = ((tr + disc) / (tr - disc).max(1e-12)).sqrt();
         let hull = crate::geometry::signed_area(&crate::image::patch::convex_hull(pts)).abs();
-        aspect < crate::track::neck::MIN_LOBE_ASPECT && n >= JOIN_SOLIDITY * hull
+        Some((n / hull.max(1e-12), aspect))
     }
 
     /// Whether window pixel `i` is in its cell's core (a marker).
@@ -482,9 +515,15 @@ pub fn joins(labels: &[u32], model: &ImageModel) -> Vec<u32> {
                 continue;
             };
             let weaker = ca.min(*cb);
-            let thinner = cells.thinner(a, b);
-            let seamless = weaker > 0.0 && sum / count as f64 >= JOIN_SHARE * weaker;
-            if count as f64 >= JOIN_CONTACT * thinner && (seamless || cells.one_body(a, b)) {
+            let share = if weaker > 0.0 {
+                sum / count as f64 / weaker
+            } else {
+                0.0
+            };
+            let contact = count as f64 / cells.thinner(a, b);
+            let one = (contact >= JOIN_CONTACT && (share >= JOIN_SHARE || cells.one_body(a, b)))
+                || (contact >= JOIN_ROD_CONTACT && share >= JOIN_ROD_SHARE && cells.one_rod(a, b));
+            if one {
                 let (ra, rb) = (find(&mut root, a), find(&mut root, b));
                 root[ra.max(rb) as usize] = ra.min(rb);
             }
@@ -801,6 +840,62 @@ mod tests {
         // Two disks pressed 0.83 radii into each other, the same band along their
         // contact: as convex, but elongated: two cells.
         let (model, labels) = disks(&[(30.0, 12.0), (44.0, 12.0)], 37, 37);
+        assert_eq!(joins(&labels, &model), [0, 1, 2]);
+    }
+
+    /// A segment's two ends.
+    type Segment = ((f64, f64), (f64, f64));
+
+    /// Capsules of radius `r` around segments on a dark ground, bright inside, and
+    /// `seam` bright where two capsules meet; labels: each pixel the first capsule it
+    /// lies in.
+    fn capsules(c: &[Segment], r: f64, seam: f32) -> (ImageModel, Vec<u32>) {
+        let (w, h) = (90, 70);
+        let dist = |p: Point, ((x0, y0), (x1, y1)): Segment| {
+            let (a, b) = (Point::new(x0, y0), Point::new(x1, y1));
+            let d = b - a;
+            let t = (((p - a).x * d.x + (p - a).y * d.y) / (d.x * d.x + d.y * d.y)).clamp(0.0, 1.0);
+            p.dist(a + d * t)
+        };
+        let at = |i: usize| Point::new((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
+        let labels: Vec<u32> = (0..w * h)
+            .map(|i| {
+                c.iter()
+                    .position(|&s| dist(at(i), s) <= r)
+                    .map_or(0, |k| k as u32 + 1)
+            })
+            .collect();
+        let data = (0..w * h)
+            .map(
+                |i| match c.iter().filter(|&&s| dist(at(i), s) <= r + 1.0).count() {
+                    _ if labels[i] == 0 => 0.2,
+                    2.. => seam,
+                    _ => 1.0,
+                },
+            )
+            .collect();
+        let params = ModelParams::seeds(Polarity::Bright, Modality::Fluorescence);
+        (
+            ImageModel::prepare(&Field::new(w, h, data), &params, &[]),
+            labels,
+        )
+    }
+
+    #[test]
+    fn a_straight_rod_cut_by_its_seeds_on_a_short_contact_is_joined_and_two_rods_at_an_angle_are_not(
+    ) {
+        // One rod whose two seeds' fronts met rounded: the contact runs 0.71 of its
+        // width, under JOIN_CONTACT, and the union is one straight rod.
+        let rod = [((14.0, 35.0), (38.0, 35.0)), ((52.5, 35.0), (76.0, 35.0))];
+        let (model, labels) = capsules(&rod, 8.0, 1.0);
+        assert_eq!(joins(&labels, &model), [0, 1, 1]);
+        // A seam as dark as the ground between them: two rods end to end.
+        let (model, labels) = capsules(&rod, 8.0, 0.2);
+        assert_eq!(joins(&labels, &model), [0, 1, 2]);
+        // Two rods meeting end to end at a right angle: as short a contact (0.64) and no
+        // seam, but their union leaves a notch its hull fills (0.75 of it).
+        let bent = [((14.0, 35.0), (38.0, 35.0)), ((53.0, 35.0), (53.0, 60.0))];
+        let (model, labels) = capsules(&bent, 8.0, 1.0);
         assert_eq!(joins(&labels, &model), [0, 1, 2]);
     }
 
