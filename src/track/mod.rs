@@ -497,12 +497,15 @@ impl Tracker {
             earlier: Vec::new(),
             evolution_frames,
         };
-        let joined = match (model.as_deref(), automatic) {
-            (Some(m), true) => {
-                let mut joined = partition::join_pieces(&mut pieces, m);
+        let joined = match model.as_deref() {
+            Some(m) if automatic => {
+                let mut joined = partition::join_pieces(&mut pieces, m, partition::Join::Any);
                 joined.extend(self.join_rods(image, &mut pieces, m));
                 joined
             }
+            // New cells: the pieces that seeds on the ground no contour covers cut one
+            // rod into are joined, as on frame 0.
+            Some(m) if t > 0 => join_new(&origins, &mut pieces, m),
             _ => Vec::new(),
         };
         let groups = claim(&origins, pieces);
@@ -1399,9 +1402,70 @@ fn without_specks(
         .collect()
 }
 
+/// The pieces of `pieces` grown from new seeds (`origins` [`Origin::New`]) joined where
+/// they are one straight rod ([`partition::Join::Rods`]); carried cells and daughters
+/// are left as they are. Returns the joined outlines.
+fn join_new(
+    origins: &[Origin],
+    pieces: &mut [Vec<TrackedObject>],
+    model: &ImageModel,
+) -> Vec<Vec<Point>> {
+    let new: Vec<usize> = (0..pieces.len())
+        .filter(|&i| matches!(origins.get(i), Some(Origin::New)))
+        .collect();
+    if new.len() < 2 {
+        return Vec::new();
+    }
+    let mut some: Vec<Vec<TrackedObject>> = new
+        .iter()
+        .map(|&i| std::mem::take(&mut pieces[i]))
+        .collect();
+    let joined = partition::join_pieces(&mut some, model, partition::Join::Rods);
+    for (&i, g) in new.iter().zip(some) {
+        pieces[i] = g;
+    }
+    joined
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn new_pieces_of_one_rod_are_joined_and_a_carried_cell_beside_them_is_left_alone() {
+        // A bright rod 60 × 12 px on a dark ground, in three pieces: the left one a
+        // carried cell's, the middle and right ones grown from two new seeds.
+        let (w, h) = (100, 50);
+        let data = (0..w * h)
+            .map(|i| match (i % w, i / w) {
+                (20..80, 20..32) => 1.0,
+                _ => 0.2,
+            })
+            .collect();
+        let params = crate::image::model::ModelParams::seeds(
+            crate::image::Polarity::Bright,
+            Modality::Fluorescence,
+        );
+        let model = ImageModel::prepare(&Field::new(w, h, data), &params, &[]);
+        let piece = |x0: f64, x1: f64| {
+            vec![object(vec![
+                Point::new(x0, 20.5),
+                Point::new(x1, 20.5),
+                Point::new(x1, 31.5),
+                Point::new(x0, 31.5),
+            ])]
+        };
+        let mut pieces = vec![piece(20.5, 39.9), piece(40.1, 59.9), piece(60.1, 79.5)];
+        let left = pieces[0].clone();
+        let origins = [Origin::Carried(7), Origin::New, Origin::New];
+        let joined = join_new(&origins, &mut pieces, &model);
+        assert_eq!(joined.len(), 1);
+        assert_eq!(pieces[0], left);
+        assert_eq!(pieces[1].len(), 1);
+        assert_eq!(pieces[1][0].ring, joined[0]);
+        assert!(pieces[1][0].area > 420.0, "{}", pieces[1][0].area);
+        assert!(pieces[2].is_empty());
+    }
 
     /// A rod along x from `x0` to `x1` at y = 20, `width` across, as a ring.
     fn rod(x0: f64, x1: f64, width: f64) -> Vec<Point> {

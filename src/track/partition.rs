@@ -24,6 +24,17 @@ use crate::image::ImageModel;
 use crate::track::{carry::labels_of, object, TrackedObject};
 use rustc_hash::FxHashMap;
 
+/// Which touching pieces [`joins`] may join.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Join {
+    /// Every rule: a seamless contact, one round body, one straight rod (frame 0).
+    Any,
+    /// One straight rod only ([`JOIN_ROD_SOLIDITY`]): new cells on later frames, whose
+    /// uncovered ground holds debris that the seamless-contact rule would join into
+    /// blobs large enough to pass for cells (docs/decisions.md, 2026-12-07, eleventh session).
+    Rods,
+}
+
 /// A marker is the part of a cell at least this share of its deepest inside distance.
 pub const CORE: f32 = 0.5;
 
@@ -438,10 +449,14 @@ pub fn divide_again(objects: &mut [TrackedObject], labels: &[u32], model: &Image
 /// contact, where the two pieces' fronts met rounded, that the image does not show
 /// (`docs/decisions.md`, 2026-12-04: such cells were cut at frame 0 and divided a few
 /// frames later in the truth).
-pub fn join_pieces(pieces: &mut [Vec<TrackedObject>], model: &ImageModel) -> Vec<Vec<Point>> {
+pub fn join_pieces(
+    pieces: &mut [Vec<TrackedObject>],
+    model: &ImageModel,
+    rule: Join,
+) -> Vec<Vec<Point>> {
     let (w, h) = model.size();
     let labels = labels_of(pieces, w, h);
-    let roots = joins(&labels, model);
+    let roots = joins(&labels, model, rule);
     let mut rings: FxHashMap<u32, Vec<Point>> =
         joined_rings(&labels, &roots, model).into_iter().collect();
     let mut k = 0u32;
@@ -492,7 +507,7 @@ pub fn repartition(labels: &[u32], model: &ImageModel) -> Vec<(u32, Vec<Point>)>
 /// phase contrast's bright line, fluorescence's dark valley — lowers it) or with a
 /// union that is one round convex body ([`JOIN_SOLIDITY`]). Returns, per
 /// label (index = label), the label it joins (itself when none), joined transitively.
-pub fn joins(labels: &[u32], model: &ImageModel) -> Vec<u32> {
+pub fn joins(labels: &[u32], model: &ImageModel, rule: Join) -> Vec<u32> {
     let (w, h) = model.size();
     let n = labels.iter().copied().max().unwrap_or(0) as usize;
     let mut root: Vec<u32> = (0..=n as u32).collect();
@@ -521,7 +536,9 @@ pub fn joins(labels: &[u32], model: &ImageModel) -> Vec<u32> {
                 0.0
             };
             let contact = count as f64 / cells.thinner(a, b);
-            let one = (contact >= JOIN_CONTACT && (share >= JOIN_SHARE || cells.one_body(a, b)))
+            let one = (rule == Join::Any
+                && contact >= JOIN_CONTACT
+                && (share >= JOIN_SHARE || cells.one_body(a, b)))
                 || (contact >= JOIN_ROD_CONTACT && share >= JOIN_ROD_SHARE && cells.one_rod(a, b));
             if one {
                 let (ra, rb) = (find(&mut root, a), find(&mut root, b));
@@ -794,13 +811,13 @@ mod tests {
     #[test]
     fn a_cell_cut_in_two_without_a_seam_is_joined_and_two_with_one_are_not() {
         let labels = divided(40);
-        assert_eq!(joins(&labels, &block(1.0)), [0, 1, 1]);
+        assert_eq!(joins(&labels, &block(1.0), Join::Any), [0, 1, 1]);
         let rings = joined_rings(&labels, &[0, 1, 1], &block(1.0));
         assert_eq!(rings.len(), 1);
         let area = crate::geometry::signed_area(&rings[0].1);
         assert!(area > 700.0 && area <= 800.0, "{area}");
         let labels = divided(34);
-        assert_eq!(joins(&labels, &block(0.3)), [0, 1, 2]);
+        assert_eq!(joins(&labels, &block(0.3), Join::Any), [0, 1, 2]);
     }
 
     /// Bright disks (centre x, radius) at y = 30 on a dark ground, darker (0.5) along
@@ -836,11 +853,13 @@ mod tests {
         // One nucleus cut where its nucleoli run darker: the band reads as a seam, but
         // the union is round and convex.
         let (model, labels) = disks(&[(40.0, 16.0)], 40, 40);
-        assert_eq!(joins(&labels, &model), [0, 1, 1]);
+        assert_eq!(joins(&labels, &model, Join::Any), [0, 1, 1]);
+        // New cells on later frames join rods only.
+        assert_eq!(joins(&labels, &model, Join::Rods), [0, 1, 2]);
         // Two disks pressed 0.83 radii into each other, the same band along their
         // contact: as convex, but elongated: two cells.
         let (model, labels) = disks(&[(30.0, 12.0), (44.0, 12.0)], 37, 37);
-        assert_eq!(joins(&labels, &model), [0, 1, 2]);
+        assert_eq!(joins(&labels, &model, Join::Any), [0, 1, 2]);
     }
 
     /// A segment's two ends.
@@ -888,15 +907,16 @@ mod tests {
         // width, under JOIN_CONTACT, and the union is one straight rod.
         let rod = [((14.0, 35.0), (38.0, 35.0)), ((52.5, 35.0), (76.0, 35.0))];
         let (model, labels) = capsules(&rod, 8.0, 1.0);
-        assert_eq!(joins(&labels, &model), [0, 1, 1]);
+        assert_eq!(joins(&labels, &model, Join::Any), [0, 1, 1]);
+        assert_eq!(joins(&labels, &model, Join::Rods), [0, 1, 1]);
         // A seam as dark as the ground between them: two rods end to end.
         let (model, labels) = capsules(&rod, 8.0, 0.2);
-        assert_eq!(joins(&labels, &model), [0, 1, 2]);
+        assert_eq!(joins(&labels, &model, Join::Any), [0, 1, 2]);
         // Two rods meeting end to end at a right angle: as short a contact (0.64) and no
         // seam, but their union leaves a notch its hull fills (0.75 of it).
         let bent = [((14.0, 35.0), (38.0, 35.0)), ((53.0, 35.0), (53.0, 60.0))];
         let (model, labels) = capsules(&bent, 8.0, 1.0);
-        assert_eq!(joins(&labels, &model), [0, 1, 2]);
+        assert_eq!(joins(&labels, &model, Join::Any), [0, 1, 2]);
     }
 
     #[test]
@@ -912,13 +932,13 @@ mod tests {
         };
         let pieces = || vec![vec![half(20.5, 33.9)], vec![half(34.1, 59.5)]];
         let mut p = pieces();
-        let joined = join_pieces(&mut p, &block(1.0));
+        let joined = join_pieces(&mut p, &block(1.0), Join::Any);
         assert_eq!(joined.len(), 1);
         assert_eq!(p[0][0].ring, joined[0]);
         assert!(p[1].is_empty());
         // With a seam between them they stay two, and nothing is returned.
         let mut p = pieces();
-        assert!(join_pieces(&mut p, &block(0.3)).is_empty());
+        assert!(join_pieces(&mut p, &block(0.3), Join::Any).is_empty());
         assert_eq!((p[0].len(), p[1].len()), (1, 1));
     }
 
