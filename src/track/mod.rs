@@ -555,7 +555,8 @@ impl Tracker {
             // Sisters touching end to end never pinch apart in the image: cut at necks.
             let mut cut: Vec<TrackedObject> = Vec::with_capacity(group.len());
             for o in group {
-                // Frame 0's joined cells were judged one cell ([`partition::join_pieces`]).
+                // Joined cells (frame 0's, new ones') were judged one cell
+                // ([`partition::join_pieces`]).
                 if joined.contains(&o.ring) {
                     cut.push(o);
                     continue;

@@ -52,13 +52,14 @@ pub const JOIN_CONTACT: f64 = 0.8;
 /// contact (two disks pressed 0.4 radii into each other fill 0.94 of their hull).
 pub const JOIN_SOLIDITY: f64 = 0.94;
 
-/// Frame 0: two touching cells whose union is one straight rod — it fills at least this
-/// share of its convex hull and is at least [`JOIN_ROD_ASPECT`] times as long as wide —
-/// are one rod its seeds cut in two on a shorter contact ([`JOIN_ROD_CONTACT`]) and a
-/// fainter middle ([`JOIN_ROD_SHARE`]) than [`JOIN_CONTACT`] and [`JOIN_SHARE`] ask. A
-/// mottled rod's seeds settle on its darker spots, and their fronts meet rounded, with
-/// a paler band between; two rods that touch at an angle or side by side leave notches
-/// their union's hull fills (docs/decisions.md, 2026-12-07, eleventh session).
+/// Frame 0 and new cells: two touching cells whose union is one straight rod — it
+/// fills at least this share of its convex hull and is at least [`JOIN_ROD_ASPECT`]
+/// times as long as wide — are one rod its seeds cut in two on a shorter contact
+/// ([`JOIN_ROD_CONTACT`]) and a fainter middle ([`JOIN_ROD_SHARE`]) than [`JOIN_CONTACT`]
+/// and [`JOIN_SHARE`] ask. A mottled rod's seeds settle on its darker spots, and their
+/// fronts meet rounded, with a paler band between; two rods that touch at an angle or
+/// side by side leave notches their union's hull fills (docs/decisions.md, 2026-12-07,
+/// eleventh session).
 pub const JOIN_ROD_SOLIDITY: f64 = 0.85;
 
 /// The least aspect (major over minor axis) of a rod's union ([`JOIN_ROD_SOLIDITY`]).
@@ -505,8 +506,10 @@ pub fn repartition(labels: &[u32], model: &ImageModel) -> Vec<(u32, Vec<Point>)>
 /// contact runs at least [`JOIN_CONTACT`] of the thinner one's width, with the score
 /// along it at least [`JOIN_SHARE`] of the weaker core's (a seam between two cells —
 /// phase contrast's bright line, fluorescence's dark valley — lowers it) or with a
-/// union that is one round convex body ([`JOIN_SOLIDITY`]). Returns, per
-/// label (index = label), the label it joins (itself when none), joined transitively.
+/// union that is one round convex body ([`JOIN_SOLIDITY`]); or pairs whose union is one
+/// straight rod ([`JOIN_ROD_SOLIDITY`]), the only rule under [`Join::Rods`]. Returns,
+/// per label (index = label), the label it joins (itself when none), joined
+/// transitively.
 pub fn joins(labels: &[u32], model: &ImageModel, rule: Join) -> Vec<u32> {
     let (w, h) = model.size();
     let n = labels.iter().copied().max().unwrap_or(0) as usize;
