@@ -1428,7 +1428,7 @@ fn join_new(
     let new: Vec<usize> = (0..pieces.len())
         .filter(|&i| matches!(origins.get(i), Some(Origin::New)))
         .collect();
-    if new.len() < 2 {
+    if new.iter().map(|&i| pieces[i].len()).sum::<usize>() < 2 {
         return Vec::new();
     }
     let mut some: Vec<Vec<TrackedObject>> = new
