@@ -48,6 +48,11 @@ fn track(frames: &[Field]) -> String {
 
 /// Tracks `frames` of objects of `polarity` in `modality`.
 fn track_as(frames: &[Field], polarity: Polarity, modality: Modality) -> String {
+    tracked(frames, polarity, modality).lineage().ctc_text()
+}
+
+/// The tracker after tracking `frames` of objects of `polarity` in `modality`.
+fn tracked(frames: &[Field], polarity: Polarity, modality: Modality) -> Tracker {
     let params = Params {
         polarity,
         modality,
@@ -57,7 +62,7 @@ fn track_as(frames: &[Field], polarity: Polarity, modality: Modality) -> String 
     for f in frames {
         tracker.step(f).unwrap();
     }
-    tracker.lineage().ctc_text()
+    tracker
 }
 
 #[test]
@@ -861,15 +866,7 @@ fn in_phase_contrast_a_dark_band_of_uneven_light_is_not_a_cell_and_the_rod_besid
         let frames: Vec<Field> = (0..3)
             .map(|t| rod_beside_a_band(20.0 + t as f64, 44.0 + t as f64, 10 * seed + t))
             .collect();
-        let params = Params {
-            polarity: Polarity::Dark,
-            modality: Modality::PhaseContrast,
-            ..Params::default()
-        };
-        let mut tracker = Tracker::new(TrackSettings::new(params), Vec::new());
-        for f in &frames {
-            tracker.step(f).unwrap();
-        }
+        let tracker = tracked(&frames, Polarity::Dark, Modality::PhaseContrast);
         assert_eq!(tracker.lineage().ctc_text(), "1 0 2 0\n", "noise {seed}");
         // The one track is the rod's (its middle at (34, 20) in the last frame), and
         // nothing covers the band.
