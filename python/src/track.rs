@@ -116,32 +116,30 @@ fn run(
 ) -> PyResult<Tracks> {
     let mut tracker = tracker_for(a, w, h).map_err(raise)?;
     let mut kept: Vec<TrackedFrame> = Vec::new();
-    let mut labels = Vec::new();
+    // The masks the CLI writes: each cell up to its frame's edges, once the next frame
+    // can no longer revise it (a division taken back or dated there).
+    let mut labels: Vec<u32> = Vec::new();
+    let mut last: Option<(Vec<u32>, Field)> = None;
     let mut csv = String::from(ctc::CSV_HEADER);
-    let size = w * h;
     for image in frames {
-        let frame = tracker.step(&image?).map_err(bad)?;
-        // This frame may revise the one before (a division taken back or dated there).
+        let image = image?;
+        let frame = tracker.step(&image).map_err(bad)?;
         if let Some(before) = kept.last_mut() {
             before.revise(&frame);
-            let at = labels.len() - size;
-            revise_labels(&mut labels[at..], w, &frame);
         }
-        labels.extend_from_slice(tracker.labels());
+        if let Some((mut raw, before)) = last.take() {
+            revise_labels(&mut raw, w, &frame);
+            labels.extend(topocontour::image::widen::to_edges(&raw, &before));
+        }
+        last = Some((tracker.labels().to_vec(), image));
         kept.push(frame);
+    }
+    if let Some((raw, before)) = last {
+        labels.extend(topocontour::image::widen::to_edges(&raw, &before));
     }
     for frame in &kept {
         csv.push_str(&ctc::csv_rows(frame, tracker.lineage()));
     }
-    // The masks the CLI writes: each cell widened by a layer of pixels.
-    let labels: Vec<u32> = if size == 0 {
-        labels
-    } else {
-        labels
-            .chunks(size)
-            .flat_map(|f| topocontour::image::widen::widened(f, w))
-            .collect()
-    };
     Ok(Tracks {
         name,
         size: (w, h),

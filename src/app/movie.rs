@@ -566,10 +566,22 @@ impl TopoApp {
             source,
         };
         std::fs::create_dir_all(dir).map_err(io)?;
-        let (w, h) = m.movie.size();
         let mut written = Vec::with_capacity(tr.frames.len());
+        // The frames read in order, each once: a mask climbs its frame's edges.
+        let mut images = m
+            .movie
+            .frames()
+            .map_err(|e| super::AppError::Movie(e.to_string()))?
+            .enumerate();
         for f in &tr.frames {
-            let bytes = track_labels(f, w, h, true)?;
+            let image = images
+                .find(|(t, _)| *t == f.frame)
+                .ok_or_else(|| {
+                    super::AppError::Movie(format!("{} has no frame {}", m.movie.name(), f.frame))
+                })?
+                .1
+                .map_err(|e| super::AppError::Movie(e.to_string()))?;
+            let bytes = track_labels(f, &image, true)?;
             let name = ctc::mask_name(f.frame, m.movie.len());
             crate::io::write_atomic(&dir.join(&name), &bytes)?;
             written.push(name);
@@ -681,7 +693,6 @@ impl TopoApp {
         let (Some(f), Some(tr)) = (m.tracked_frame(), m.tracking.as_ref()) else {
             return Ok(None);
         };
-        let (w, h) = m.movie.size();
         match format {
             crate::io::Format::Csv => {
                 let mut csv = String::from(ctc::CSV_HEADER);
@@ -692,7 +703,14 @@ impl TopoApp {
             }
             crate::io::Format::Labels => {
                 format.check_name(path)?;
-                Ok(Some(track_labels(f, w, h, crate::io::export::is_tiff(path))?))
+                let image = m
+                    .movie
+                    .frames()
+                    .map_err(|e| super::AppError::Movie(e.to_string()))?
+                    .nth(f.frame)
+                    .ok_or_else(|| super::AppError::Movie(format!("{} has no frame {}", m.movie.name(), f.frame)))?
+                    .map_err(|e| super::AppError::Movie(e.to_string()))?;
+                Ok(Some(track_labels(f, &image, crate::io::export::is_tiff(path))?))
             }
             _ => Err(super::AppError::Movie(format!(
                 "a tracked frame exports as Measurements CSV (every frame's cells by track) or a label image (this frame's cells by track); {} needs the frame's run: Edit it or Step",
@@ -702,19 +720,17 @@ impl TopoApp {
     }
 }
 
-/// The cells of `f` as a 16-bit label image by track number (TIFF or PNG).
-fn track_labels(
-    f: &TrackedFrame,
-    w: usize,
-    h: usize,
-    tiff: bool,
-) -> Result<Vec<u8>, super::AppError> {
+/// The cells of `f` as a 16-bit label image by track number (TIFF or PNG), as `track
+/// --ctc` writes its masks: up to the edges of `image`, the frame's
+/// ([`crate::image::widen::to_edges`]).
+fn track_labels(f: &TrackedFrame, image: &Field, tiff: bool) -> Result<Vec<u8>, super::AppError> {
+    let (w, h) = (image.width, image.height);
     let rings: Vec<(u32, &[crate::geometry::Point])> = f
         .objects
         .iter()
         .map(|o| (o.track, o.ring.as_slice()))
         .collect();
-    let labels = crate::image::widen::widened(&label_raster(&rings, w, h), w);
+    let labels = crate::image::widen::to_edges(&label_raster(&rings, w, h), image);
     ctc::label_image(&labels, w, h, tiff)
         .ok_or_else(|| super::AppError::Movie("more than 65,535 tracks".into()))
 }

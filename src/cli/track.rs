@@ -287,7 +287,7 @@ impl Out<'_> {
     fn write(&mut self, held: &Held, lineage: &Lineage) -> Result<(), Failure> {
         let (a, (w, h), t) = (self.a, self.size, held.frame.frame);
         if let Some(dir) = &self.plan.ctc {
-            let labels = crate::image::widen::widened(&held.labels, w);
+            let labels = crate::image::widen::to_edges(&held.labels, &held.image);
             let bytes = ctc::label_image(&labels, w, h, true)
                 .ok_or_else(|| bad("more than 65,535 tracks for 16-bit label images"))?;
             // An earlier result's res_track.txt would describe masks this run replaces
