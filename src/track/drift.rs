@@ -151,11 +151,34 @@ pub const CELL_FROM: i32 = 8;
 /// farther, a rod matches its look-alike neighbour.
 pub const CELL_REACH: i32 = 10;
 
+/// How far a cell's neighbourhood ([`NEIGHBOURHOOD`]) is searched beyond the field's
+/// shift (pixels, each way). In a sheet of parallel rods one rod's place matches its
+/// neighbour's, so a cell alone cannot be searched farther than [`CELL_REACH`]; but the
+/// dense colony's rods moved up to 24 px a frame (90th percentile), and there a contour
+/// landed on the rod beside its own, the whole sheet's labels moving over by one rod
+/// (divbac26 frames 8–9). Several cells together are no periodic pattern, and a
+/// colony's cells move with their neighbours (it grows and flows as one), so the
+/// neighbourhood's shift is searched this far, and the cell's own near it
+/// ([`NEIGHBOURHOOD_FINE`]).
+pub const NEIGHBOURHOOD_REACH: i32 = 24;
+
+/// A cell's neighbourhood: the cells whose boxes' centres lie within this many times its
+/// box's diagonal of its own.
+pub const NEIGHBOURHOOD: f64 = 1.5;
+
+/// How far a cell's own shift is searched around its neighbourhood's (pixels, each way).
+pub const NEIGHBOURHOOD_FINE: i32 = 2;
+
 /// Per cell of `labels` (a label raster of `before`), the shift beyond the field's `s`
 /// that best maps its pixels and a 2 px band around them onto `after` (the mean squared
 /// difference, the band being where a rod's end and sides show; past the edge against
-/// the frame's background, so a leaving cell is not pulled back in); a cell is left out
-/// unless its best beats no shift of its own by [`MIN_GAIN`].
+/// the frame's background, so a leaving cell is not pulled back in). Two places are
+/// weighed, and the one that matches the cell better is taken: its best within
+/// [`CELL_REACH`] of the field's shift (a cell that moved on its own: in a sliding
+/// colony the neighbourhood's shift missed single rods' by up to 10 px), and its best
+/// within [`NEIGHBOURHOOD_FINE`] of its neighbourhood's shift (see
+/// [`NEIGHBOURHOOD_REACH`]). A cell is left out unless its best beats no shift of its
+/// own by [`MIN_GAIN`].
 pub fn cell_shifts(
     before: &Field,
     after: &Field,
@@ -171,7 +194,7 @@ pub fn cell_shifts(
         return out;
     }
     // Each cell's box.
-    let mut boxes: std::collections::HashMap<u32, [i32; 4]> = std::collections::HashMap::new();
+    let mut boxes: std::collections::BTreeMap<u32, [i32; 4]> = std::collections::BTreeMap::new();
     for (i, &l) in labels.iter().enumerate() {
         if l != 0 {
             let (x, y) = (i as i32 % w, i as i32 / w);
@@ -179,50 +202,92 @@ pub fn cell_shifts(
             *b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
         }
     }
-    const BAND: i32 = 2;
     let pad = background(after);
     let shifts = by_distance(CELL_REACH);
-    for (l, b) in boxes {
-        let mut samples: Vec<(i32, i32)> = Vec::new();
-        for y in (b[1] - BAND).max(0)..=(b[3] + BAND).min(h - 1) {
-            for x in (b[0] - BAND).max(0)..=(b[2] + BAND).min(w - 1) {
-                let at = labels[(y * w + x) as usize];
-                let near = at == l
-                    || (at == 0
-                        && (-BAND..=BAND).any(|dy| {
-                            (-BAND..=BAND).any(|dx| {
-                                let (u, v) = (x + dx, y + dy);
-                                u >= 0
-                                    && v >= 0
-                                    && u < w
-                                    && v < h
-                                    && labels[(v * w + u) as usize] == l
-                            })
-                        }));
-                if near {
-                    samples.push((x, y));
-                }
-            }
-        }
-        let step = samples.len().div_ceil(MAX_CELL_SAMPLES).max(1);
-        let samples: Vec<(i32, i32)> = samples.into_iter().step_by(step).collect();
-        let level = Level::new(before, after, &samples, 1, pad);
-        let cost = |e: (i32, i32)| level.cost((s.0 + e.0, s.1 + e.1));
-        let none = cost((0, 0));
+    let samples: std::collections::BTreeMap<u32, Vec<(i32, i32)>> = boxes
+        .iter()
+        .map(|(&l, &b)| (l, cell_samples(labels, w, h, l, b)))
+        .collect();
+    let (b2, a2) = (block_mean(before, 2), block_mean(after, 2));
+    let (b4, a4) = (block_mean(&b2, 2), block_mean(&a2, 2));
+    let centre = |b: &[i32; 4]| (0.5 * (b[0] + b[2]) as f64, 0.5 * (b[1] + b[3]) as f64);
+    for (&l, b) in &boxes {
+        let own = &samples[&l];
+        let step = own.len().div_ceil(MAX_CELL_SAMPLES).max(1);
+        let own: Vec<(i32, i32)> = own.iter().copied().step_by(step).collect();
+        let level = Level::new(before, after, &own, 1, pad);
+        let none = level.cost(s);
         // Nearest shifts first, so of equal costs the shortest move wins: a rod matches
         // its look-alike neighbour as well as its own new place.
-        let mut best = (none, (0, 0));
+        let mut best = (none, s);
         for &(dx, dy) in &shifts {
-            let c = cost((dx, dy));
+            let at = (s.0 + dx, s.1 + dy);
+            let c = level.cost(at);
             if c < best.0 {
-                best = (c, (dx, dy));
+                best = (c, at);
             }
         }
-        if best.1 != (0, 0) && best.0 < MIN_GAIN * none {
-            out.insert(l, best.1);
+        // The neighbourhood's shift, coarse to fine as the field's.
+        let (cx, cy) = centre(b);
+        let reach = NEIGHBOURHOOD * ((b[2] - b[0]) as f64).hypot((b[3] - b[1]) as f64);
+        let mut near: Vec<(i32, i32)> = Vec::new();
+        for (k, bk) in &boxes {
+            let (x, y) = centre(bk);
+            if (x - cx).hypot(y - cy) <= reach.max(1.0) {
+                near.extend_from_slice(&samples[k]);
+            }
+        }
+        let step = near.len().div_ceil(NEIGHBOURHOOD_SAMPLES).max(1);
+        let near: Vec<(i32, i32)> = near.into_iter().step_by(step).collect();
+        let (quarter, half) = (
+            Level::new(&b4, &a4, &near, 4, pad),
+            Level::new(&b2, &a2, &near, 2, pad),
+        );
+        let full = Level::new(before, after, &near, 1, pad);
+        let (c4, _) = quarter.search((s.0 / 4, s.1 / 4), NEIGHBOURHOOD_REACH / 4);
+        let c2 = half.best_around((2 * c4.0, 2 * c4.1), 1);
+        let moved = full.best_around((2 * c2.0, 2 * c2.1), 1);
+        let moved = if full.cost(moved) < full.cost(s) {
+            moved
+        } else {
+            s
+        };
+        let along = level.best_around(moved, NEIGHBOURHOOD_FINE);
+        // On a tie the cell moves with its neighbours: a colony flows as one.
+        let c = level.cost(along);
+        if c <= best.0 {
+            best = (c, along);
+        }
+        let e = (best.1 .0 - s.0, best.1 .1 - s.1);
+        if e != (0, 0) && best.0 < MIN_GAIN * none {
+            out.insert(l, e);
         }
     }
     out
+}
+
+/// Cell `l`'s pixels of `labels` (`w`×`h`) in its box `b`, and the free ones within 2 px
+/// of them.
+fn cell_samples(labels: &[u32], w: i32, h: i32, l: u32, b: [i32; 4]) -> Vec<(i32, i32)> {
+    const BAND: i32 = 2;
+    let mut samples: Vec<(i32, i32)> = Vec::new();
+    for y in (b[1] - BAND).max(0)..=(b[3] + BAND).min(h - 1) {
+        for x in (b[0] - BAND).max(0)..=(b[2] + BAND).min(w - 1) {
+            let at = labels[(y * w + x) as usize];
+            let near = at == l
+                || (at == 0
+                    && (-BAND..=BAND).any(|dy| {
+                        (-BAND..=BAND).any(|dx| {
+                            let (u, v) = (x + dx, y + dy);
+                            u >= 0 && v >= 0 && u < w && v < h && labels[(v * w + u) as usize] == l
+                        })
+                    }));
+            if near {
+                samples.push((x, y));
+            }
+        }
+    }
+    samples
 }
 
 /// Every shift of at most `reach` along each axis, nearest to none first (ties in
@@ -247,6 +312,9 @@ fn background(f: &Field) -> f32 {
 
 /// Most pixels sampled per cell ([`cell_shifts`]).
 const MAX_CELL_SAMPLES: usize = 600;
+
+/// Most pixels sampled per neighbourhood ([`cell_shifts`]).
+const NEIGHBOURHOOD_SAMPLES: usize = 2_400;
 
 /// Quantiles [`ON_QUANTILES`] of a frame put at 0 and 1 (read from every
 /// [`QUANTILE_STRIDE`]-th pixel).
@@ -447,5 +515,55 @@ mod tests {
         assert_eq!(own.get(&2), Some(&(4, -3)));
         assert_eq!(own.get(&1), None);
         assert_eq!(own.get(&3), None);
+    }
+
+    /// Vertical rods `(x, top, bottom)` 7 px wide on a `w`×`h` frame, and their labels.
+    fn rods(w: usize, h: usize, at: &[(i32, i32, i32)]) -> (Field, Vec<u32>) {
+        let mut data = vec![0.9f32; w * h];
+        let mut labels = vec![0u32; w * h];
+        for (k, &(cx, top, bottom)) in at.iter().enumerate() {
+            for y in top..=bottom {
+                for x in cx - 3..=cx + 3 {
+                    if (0..w as i32).contains(&x) && (0..h as i32).contains(&y) {
+                        data[y as usize * w + x as usize] = 0.1;
+                        labels[y as usize * w + x as usize] = k as u32 + 1;
+                    }
+                }
+            }
+        }
+        (Field::new(w, h, data), labels)
+    }
+
+    #[test]
+    fn a_sheet_of_rods_that_moved_past_a_rods_reach_is_followed_by_its_neighbourhood() {
+        // Five parallel rods 12 px apart (no two of one length) move 14 px right together,
+        // beyond CELL_REACH: alone, each matches the place its left neighbour moved to,
+        // 2 px to its right. A larger sheet beside them stays, so the field did not move.
+        let sheet = [
+            (20, 10, 50),
+            (32, 14, 58),
+            (44, 8, 46),
+            (56, 18, 60),
+            (68, 12, 49),
+        ];
+        let still: Vec<(i32, i32, i32)> = (0..8)
+            .map(|k| (120 + 12 * k, 20 + 3 * (k % 3), 70))
+            .collect();
+        let before_at: Vec<(i32, i32, i32)> =
+            sheet.iter().copied().chain(still.iter().copied()).collect();
+        let after_at: Vec<(i32, i32, i32)> = sheet
+            .iter()
+            .map(|&(x, t, b)| (x + 14, t, b))
+            .chain(still.iter().copied())
+            .collect();
+        let (before, labels) = rods(240, 90, &before_at);
+        let (after, _) = rods(240, 90, &after_at);
+        let own = cell_shifts(&before, &after, &labels, (0, 0));
+        for k in 1..=sheet.len() as u32 {
+            assert_eq!(own.get(&k), Some(&(14, 0)), "rod {k}");
+        }
+        for k in sheet.len() as u32 + 1..=before_at.len() as u32 {
+            assert_eq!(own.get(&k), None, "still rod {k}");
+        }
     }
 }
