@@ -106,10 +106,7 @@ pub fn field_shift(before: &Field, after: &Field, cells: &[u32]) -> (i32, i32) {
     let a4 = block_mean(&a2, 2);
     let half = Level::new(&b2, &a2, &samples, 2, pad);
     let quarter = Level::new(&b4, &a4, &samples, 4, pad);
-    let refine = |s: (i32, i32)| {
-        let s = half.best_around((2 * s.0, 2 * s.1), 1);
-        full.best_around((2 * s.0, 2 * s.1), 1)
-    };
+    let refine = |s: (i32, i32)| refined(&half, &full, s);
     let (near, flat) = quarter.search((0, 0), NEAR_SHIFT / 4);
     let mut candidates = vec![close, refine(near)];
     // Farther only when no shift within reach stands out: the cells landed on nothing.
@@ -245,8 +242,7 @@ pub fn cell_shifts(
         );
         let full = Level::new(before, after, &near, 1, pad);
         let (c4, _) = quarter.search((s.0 / 4, s.1 / 4), NEIGHBOURHOOD_REACH / 4);
-        let c2 = half.best_around((2 * c4.0, 2 * c4.1), 1);
-        let moved = full.best_around((2 * c2.0, 2 * c2.1), 1);
+        let moved = refined(&half, &full, c4);
         let moved = if full.cost(moved) < full.cost(s) {
             moved
         } else {
@@ -264,6 +260,13 @@ pub fn cell_shifts(
         }
     }
     out
+}
+
+/// A shift `s` found at a quarter of the resolution, refined at `half` and then `full`
+/// resolution (one pixel either way at each).
+fn refined(half: &Level, full: &Level, s: (i32, i32)) -> (i32, i32) {
+    let s = half.best_around((2 * s.0, 2 * s.1), 1);
+    full.best_around((2 * s.0, 2 * s.1), 1)
 }
 
 /// Cell `l`'s pixels of `labels` (`w`×`h`) in its box `b`, and the free ones within 2 px
