@@ -403,7 +403,7 @@ fn the_open_holes_check_box_decides_whether_a_wrap_finds_a_ring_hole() {
         set.contour_ids().filter(|&id| set.is_hole(id)).count()
     };
     let mut app = TopoApp::default();
-    app.send(Command::OpenImage(path));
+    app.send(Command::OpenImage(path.to_path_buf()));
     app.send(Command::SetPolarity(
         topocontour::evolution::Polarity::Bright,
     ));

@@ -59,7 +59,7 @@ fn a_deletion_survives_scrubbing_back_and_stepping() {
     h.step();
     assert_eq!(contours_now(&h), 3, "redo brings it back");
     let path = temp("deleted.session.json");
-    h.state_mut().send(Command::SaveSession(path.clone()));
+    h.state_mut().send(Command::SaveSession(path.to_path_buf()));
     h.step();
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
@@ -112,12 +112,12 @@ fn the_object_table_refreshes_after_a_brush_stroke() {
 }
 
 /// A bright ring (a hole opens in a wrap around it) and the shapes of a wrap.
-fn ring_app() -> (TopoApp, std::path::PathBuf) {
+fn ring_app() -> (TopoApp, Scratch) {
     let img = topocontour::check::ring_image(128, 16.0, 40.0);
     let path = temp("ring.png");
     img.save(&path).unwrap();
     let mut app = TopoApp::default();
-    app.send(Command::OpenImage(path.clone()));
+    app.send(Command::OpenImage(path.to_path_buf()));
     app.send(Command::SetPolarity(Polarity::Bright));
     app.send(Command::WrapBorder(4.0));
     app.apply();
@@ -348,7 +348,7 @@ fn apply_to_folder_finds_seeds_per_image() {
     let mut app = TopoApp::default();
     app.send(Command::OpenImage(dir.join("a_small.png")));
     app.send(Command::FindSeeds);
-    app.send(Command::ApplyToFolder(dir.clone()));
+    app.send(Command::ApplyToFolder(dir.to_path_buf()));
     let mut h = harness(app);
     h.step();
     let t = std::time::Instant::now();

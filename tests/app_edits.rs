@@ -132,7 +132,9 @@ fn a_session_replays_hand_edits_and_force_changes() {
     assert!(evolver(h.state()).edits().len() >= 2);
     let mut other = harness(TopoApp::default());
     other.step();
-    other.state_mut().send(Command::OpenSession(path.clone()));
+    other
+        .state_mut()
+        .send(Command::OpenSession(path.to_path_buf()));
     other.step();
     assert_no_error(&other);
     assert_eq!(other.state().doc.shown, h.state().doc.shown);
@@ -205,7 +207,9 @@ fn session_save_then_open_gives_the_same_state() {
     let want = contours(before);
     let mut other = harness(TopoApp::default());
     other.step();
-    other.state_mut().send(Command::OpenSession(path));
+    other
+        .state_mut()
+        .send(Command::OpenSession(path.to_path_buf()));
     other.step();
     let after = other.state();
     assert!(after.status.error.is_none(), "{:?}", after.status.error);

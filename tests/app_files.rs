@@ -71,7 +71,7 @@ fn opening_over_work_not_saved_says_that_work_waits_in_undo() {
             radius: 5.0,
         }));
     h.step();
-    h.state_mut().send(Command::OpenSession(path.clone()));
+    h.state_mut().send(Command::OpenSession(path.to_path_buf()));
     h.step();
     assert_no_error(&h);
     assert_eq!(h.state().doc.shapes.len(), 1, "the session's one seed");
@@ -94,7 +94,7 @@ fn opening_over_work_not_saved_says_that_work_waits_in_undo() {
     // Nothing unsaved: an opened file asks nothing, nor does a failed open.
     let mut h = harness(bright_bridge_with_seeds(&[]));
     h.step();
-    h.state_mut().send(Command::OpenSession(path.clone()));
+    h.state_mut().send(Command::OpenSession(path.to_path_buf()));
     h.step();
     h.state_mut()
         .send(Command::OpenImage("/nonexistent/x.png".into()));
@@ -105,13 +105,14 @@ fn opening_over_work_not_saved_says_that_work_waits_in_undo() {
     let image = temp("changing.png");
     std::fs::copy(case_image("bridge_merge"), &image).unwrap();
     let mut h = harness(TopoApp::default());
-    h.state_mut().send(Command::OpenImage(image.clone()));
+    h.state_mut().send(Command::OpenImage(image.to_path_buf()));
     h.step();
     seed_at(&mut h, 40.0);
     let session = save_session(&mut h, "changing.json");
     seed_at(&mut h, 60.0);
     std::fs::copy(case_image("blobs_wrap"), &image).unwrap();
-    h.state_mut().send(Command::OpenSession(session));
+    h.state_mut()
+        .send(Command::OpenSession(session.to_path_buf()));
     h.step();
     assert!(h.state().status.error.is_some(), "the image changed");
     assert_eq!(h.state().doc.shapes.len(), 2);
@@ -138,7 +139,7 @@ fn export_writes_an_svg_that_parses_and_reset_clears() {
     }
     let path = temp("app.svg");
     h.state_mut()
-        .send(Command::Export(Format::Svg, path.clone()));
+        .send(Command::Export(Format::Svg, path.to_path_buf()));
     h.step();
     let svg = std::fs::read_to_string(&path).expect("export wrote the file");
     let tree =
@@ -163,15 +164,11 @@ fn export_labels_and_roi_set() {
     h.step();
     h.state_mut().send(Command::Step(60));
     h.step();
-    let dir = std::env::temp_dir();
-    let (tif, zip) = (
-        dir.join(format!("topocontour-app-{}.tif", std::process::id())),
-        dir.join(format!("topocontour-app-{}.zip", std::process::id())),
-    );
+    let (tif, zip) = (temp("labels.tif"), temp("rois.zip"));
     h.state_mut()
-        .send(Command::Export(Format::Labels, tif.clone()));
+        .send(Command::Export(Format::Labels, tif.to_path_buf()));
     h.state_mut()
-        .send(Command::Export(Format::Roi, zip.clone()));
+        .send(Command::Export(Format::Roi, zip.to_path_buf()));
     h.step();
     assert_no_error(&h);
     let labels = image::open(&tif).expect("label image").to_luma16();
@@ -191,7 +188,7 @@ fn a_twelve_bit_image_opens_with_its_own_contrast() {
     let path = temp("app-12bit.tif");
     img.save(&path).unwrap();
     let mut app = TopoApp::default();
-    app.send(Command::OpenImage(path));
+    app.send(Command::OpenImage(path.to_path_buf()));
     let mut h = harness(app);
     h.step();
     let (lo, hi) = h.state().doc.settings.contrast;
@@ -247,7 +244,7 @@ fn a_tiff_stack_opens_with_its_pages_and_pixel_size() {
         }
     }
     let mut h = harness(TopoApp::default());
-    h.state_mut().send(Command::OpenImage(path.clone()));
+    h.state_mut().send(Command::OpenImage(path.to_path_buf()));
     h.step();
     assert_no_error(&h);
     assert!(notice(&h).contains("3 pages"));
@@ -266,7 +263,7 @@ fn a_tiff_stack_opens_with_its_pages_and_pixel_size() {
     h.state_mut().send(Command::Step(3));
     let csv = temp("app-stack.csv");
     h.state_mut()
-        .send(Command::Export(Format::Csv, csv.clone()));
+        .send(Command::Export(Format::Csv, csv.to_path_buf()));
     h.step();
     assert_no_error(&h);
     let text = std::fs::read_to_string(&csv).unwrap();
@@ -293,7 +290,7 @@ fn apply_to_folder_runs_in_the_background() {
         std::fs::copy(case_image(case), dir.join(format!("img{i}.png"))).unwrap();
     }
     let mut app = TopoApp::with_sample();
-    app.send(Command::ApplyToFolder(dir.clone()));
+    app.send(Command::ApplyToFolder(dir.to_path_buf()));
     let mut h = harness(app);
     h.step();
     assert!(
@@ -337,7 +334,7 @@ fn a_large_image_is_prepared_in_the_background() {
     let path = temp("app-large.png");
     img.save(&path).unwrap();
     let mut app = TopoApp::default();
-    app.send(Command::OpenImage(path.clone()));
+    app.send(Command::OpenImage(path.to_path_buf()));
     app.send(Command::WrapBorder(10.0));
     app.send(Command::Step(3));
     let mut h = harness(app);

@@ -35,7 +35,7 @@ fn frame(w: u32, h: u32, capsules: &[Capsule]) -> image::GrayImage {
 }
 
 /// Writes `frames` as `DIR/fNNN.png`; the folder.
-fn movie_folder(name: &str, frames: &[image::GrayImage]) -> std::path::PathBuf {
+fn movie_folder(name: &str, frames: &[image::GrayImage]) -> Scratch {
     let dir = temp(name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
@@ -91,13 +91,14 @@ fn movie_app(dir: &std::path::Path) -> Harness<'static, TopoApp> {
     h
 }
 
-/// The app on `frames` (written as the movie folder `name`), tracked to the end.
-fn tracked_movie(name: &str, frames: &[image::GrayImage]) -> Harness<'static, TopoApp> {
+/// The app on `frames` (written as the movie folder `name`), tracked to the end; the
+/// folder goes when the second is dropped.
+fn tracked_movie(name: &str, frames: &[image::GrayImage]) -> (Harness<'static, TopoApp>, Scratch) {
     let dir = movie_folder(name, frames);
     let mut h = movie_app(&dir);
     click_label(&mut h, "Track movie");
     wait_for_tracking(&mut h);
-    h
+    (h, dir)
 }
 
 /// Draws frames until tracking has ended (at most a minute).
@@ -198,7 +199,7 @@ fn the_movie_slider_shows_frames_and_track_runs_with_cancel() {
 
 #[test]
 fn a_division_is_listed_in_the_event_log_and_a_click_shows_its_frame() {
-    let mut h = tracked_movie("division", &dividing_rod());
+    let (mut h, _movie) = tracked_movie("division", &dividing_rod());
     let tr = h
         .state()
         .doc
@@ -234,7 +235,7 @@ fn a_division_is_listed_in_the_event_log_and_a_click_shows_its_frame() {
 
 #[test]
 fn keys_and_play_move_through_a_tracked_movie_not_the_evolution() {
-    let mut h = tracked_movie("keys", &dividing_rod());
+    let (mut h, _movie) = tracked_movie("keys", &dividing_rod());
     h.state_mut().send(Command::SeekMovieFrame(0));
     h.step();
     let evolution = h.state().doc.shown;
@@ -283,7 +284,7 @@ fn keys_and_play_move_through_a_tracked_movie_not_the_evolution() {
 
 #[test]
 fn a_division_the_next_frame_takes_back_leaves_the_event_log_and_the_lineage() {
-    let mut h = tracked_movie("parting", &parting_nucleus());
+    let (mut h, _movie) = tracked_movie("parting", &parting_nucleus());
     let tr = tracking(&h);
     assert!(tr.complete);
     assert_eq!(tr.lineage.ctc_text(), "1 0 6 0\n");
@@ -299,7 +300,7 @@ fn a_division_the_next_frame_takes_back_leaves_the_event_log_and_the_lineage() {
 
 #[test]
 fn the_lineage_view_selects_a_track_and_shows_its_frame() {
-    let mut h = tracked_movie("lineage", &dividing_rod());
+    let (mut h, _movie) = tracked_movie("lineage", &dividing_rod());
     // Rows in depth-first order: track 1, then its daughters 2 and 3, 10 px each, in a
     // view inset 4 px across and 8 px down; x runs over frames 0 to 7.
     let r = h.get_by_label("Lineage view").rect();
@@ -323,13 +324,13 @@ fn the_tracking_result_exports_in_the_ctc_layout() {
     let mut h = movie_app(&dir);
     let out = temp("ctc-out");
     let _ = std::fs::remove_dir_all(&out);
-    h.state_mut().send(Command::ExportCtc(out.clone()));
+    h.state_mut().send(Command::ExportCtc(out.to_path_buf()));
     h.step();
     assert!(h.state().status.error.is_some(), "nothing tracked yet");
     h.state_mut().status.error = None;
     click_label(&mut h, "Track movie");
     wait_for_tracking(&mut h);
-    h.state_mut().send(Command::ExportCtc(out.clone()));
+    h.state_mut().send(Command::ExportCtc(out.to_path_buf()));
     h.step();
     assert_no_error(&h);
     let res = std::fs::read_to_string(out.join("res_track.txt")).unwrap();
@@ -344,13 +345,13 @@ fn the_tracking_result_exports_in_the_ctc_layout() {
 
 #[test]
 fn closing_with_a_tracking_not_exported_asks_first() {
-    let mut h = tracked_movie("close", &dividing_rod());
+    let (mut h, _movie) = tracked_movie("close", &dividing_rod());
     assert!(!close_window(&mut h));
     h.get_by_label("The tracking of 8 frames is not saved.");
     click_label(&mut h, "Cancel");
     let out = temp("close-ctc");
     let _ = std::fs::remove_dir_all(&out);
-    h.state_mut().send(Command::ExportCtc(out.clone()));
+    h.state_mut().send(Command::ExportCtc(out.to_path_buf()));
     h.step();
     assert_no_error(&h);
     assert!(close_window(&mut h), "exported");
@@ -369,14 +370,16 @@ fn closing_with_a_tracking_not_exported_asks_first() {
 
 #[test]
 fn a_tracked_frame_lists_and_exports_its_cells_by_track() {
-    let mut h = tracked_movie("table", &dividing_rod());
+    let (mut h, _movie) = tracked_movie("table", &dividing_rod());
     h.state_mut().send(Command::SeekMovieFrame(5));
     h.step();
     h.step();
     h.get_by_label("2 cells in movie frame 5");
     let csv = temp("tracks.csv");
-    h.state_mut()
-        .send(Command::Export(topocontour::app::Format::Csv, csv.clone()));
+    h.state_mut().send(Command::Export(
+        topocontour::app::Format::Csv,
+        csv.to_path_buf(),
+    ));
     h.step();
     assert_no_error(&h);
     let text = std::fs::read_to_string(&csv).unwrap();
@@ -391,7 +394,7 @@ fn a_tracked_frame_lists_and_exports_its_cells_by_track() {
     let labels = temp("frame5.labels.tif");
     h.state_mut().send(Command::Export(
         topocontour::app::Format::Labels,
-        labels.clone(),
+        labels.to_path_buf(),
     ));
     h.step();
     assert_no_error(&h);
@@ -400,9 +403,10 @@ fn a_tracked_frame_lists_and_exports_its_cells_by_track() {
     seen.sort_unstable();
     seen.dedup();
     assert_eq!(seen, [0, 2, 3], "the frame's cells by track");
+    let svg = temp("f.svg");
     h.state_mut().send(Command::Export(
         topocontour::app::Format::Svg,
-        temp("f.svg"),
+        svg.to_path_buf(),
     ));
     h.step();
     let err = h
@@ -419,7 +423,7 @@ fn a_tracked_frame_lists_and_exports_its_cells_by_track() {
 fn a_bad_movie_is_refused_with_one_line() {
     let dir = movie_folder("short", &dividing_rod()[..1]);
     let mut app = TopoApp::default();
-    app.send(Command::OpenMovie(dir));
+    app.send(Command::OpenMovie(dir.to_path_buf()));
     let mut h = harness(app);
     h.step();
     let e = h.state().status.error.as_ref().map(|e| e.to_string());
@@ -442,8 +446,8 @@ fn tracking(h: &Harness<'_, TopoApp>) -> topocontour::app::Tracking {
 }
 
 /// The dividing rod tracked (1 divides into 2 and 3 at frame 4), frame `t` on screen.
-fn tracked_rod(name: &str, t: usize) -> Harness<'static, TopoApp> {
-    let mut h = tracked_movie(name, &dividing_rod());
+fn tracked_rod(name: &str, t: usize) -> (Harness<'static, TopoApp>, Scratch) {
+    let (mut h, dir) = tracked_movie(name, &dividing_rod());
     assert_eq!(
         tracking(&h).lineage.ctc_text(),
         "1 0 3 0\n2 4 7 1\n3 4 7 1\n"
@@ -451,7 +455,7 @@ fn tracked_rod(name: &str, t: usize) -> Harness<'static, TopoApp> {
     h.state_mut().send(Command::SeekMovieFrame(t));
     h.step();
     assert_eq!(movie_frame(&h), t);
-    h
+    (h, dir)
 }
 
 /// Drags the primary button across the canvas from image point `a` to `b`.
@@ -475,7 +479,7 @@ fn drag(h: &mut Harness<'_, TopoApp>, a: Point, b: Point) {
 
 #[test]
 fn a_wrong_split_undone_by_hand_tracks_the_frames_after_it_again() {
-    let mut h = tracked_rod("undo-split", 4);
+    let (mut h, _movie) = tracked_rod("undo-split", 4);
     let before = tracking(&h);
     click_label(&mut h, "Brush");
     h.step();
@@ -518,7 +522,7 @@ fn a_wrong_split_undone_by_hand_tracks_the_frames_after_it_again() {
 
 #[test]
 fn a_tracked_and_corrected_movie_saved_as_a_session_reopens_as_it_was() {
-    let mut h = tracked_rod("session", 4);
+    let (mut h, _movie) = tracked_rod("session", 4);
     click_label(&mut h, "Brush");
     h.step();
     drag(&mut h, Point::new(38.0, 32.0), Point::new(60.0, 32.0));
@@ -535,7 +539,9 @@ fn a_tracked_and_corrected_movie_saved_as_a_session_reopens_as_it_was() {
     let text = std::fs::read_to_string(&path).unwrap();
     assert!(text.contains("\"format\":\"topocontour-tracking\""));
     let mut again = harness(TopoApp::default());
-    again.state_mut().send(Command::OpenSession(path.clone()));
+    again
+        .state_mut()
+        .send(Command::OpenSession(path.to_path_buf()));
     again.step();
     again.step();
     assert_no_error(&again);
@@ -564,7 +570,8 @@ fn a_tracked_and_corrected_movie_saved_as_a_session_reopens_as_it_was() {
     )
     .unwrap();
     let mut bad = harness(TopoApp::default());
-    bad.state_mut().send(Command::OpenSession(path));
+    bad.state_mut()
+        .send(Command::OpenSession(path.to_path_buf()));
     bad.step();
     let e = bad.state().status.error.as_ref().map(|e| e.to_string());
     assert!(
@@ -577,7 +584,7 @@ fn a_tracked_and_corrected_movie_saved_as_a_session_reopens_as_it_was() {
 
 #[test]
 fn a_cell_deleted_ends_its_track_and_later_corrections_are_asked_about() {
-    let mut h = tracked_rod("delete", 6);
+    let (mut h, _movie) = tracked_rod("delete", 6);
     // The daughter on the right.
     let right = tracking(&h).frames[6]
         .objects

@@ -15,7 +15,7 @@ use topocontour::geometry::Point;
 use topocontour::learn::{BACKGROUND, OBJECT};
 
 /// A 128×128 image: disks of radius 20 at (40, 64) and (90, 64), written once per name.
-fn disks_png(name: &str) -> std::path::PathBuf {
+fn disks_png(name: &str) -> Scratch {
     let img = image::GrayImage::from_fn(128, 128, |x, y| {
         let d = |cx: f64, cy: f64| {
             ((x as f64 + 0.5 - cx).powi(2) + (y as f64 + 0.5 - cy).powi(2)).sqrt()
@@ -30,10 +30,10 @@ fn disks_png(name: &str) -> std::path::PathBuf {
 }
 
 /// The app on the disks with the Train tool chosen, drawn once.
-fn train_app(name: &str) -> (Harness<'static, TopoApp>, std::path::PathBuf) {
+fn train_app(name: &str) -> (Harness<'static, TopoApp>, Scratch) {
     let path = disks_png(name);
     let mut app = TopoApp::default();
-    app.send(Command::OpenImage(path.clone()));
+    app.send(Command::OpenImage(path.to_path_buf()));
     app.send(Command::SetPolarity(
         topocontour::evolution::Polarity::Bright,
     ));
@@ -106,7 +106,7 @@ fn prob(h: &Harness<'_, TopoApp>, label: u8, x: usize, y: usize) -> f32 {
 
 #[test]
 fn the_train_tool_has_keys_a_legend_and_a_brush_size() {
-    let (mut h, _) = train_app("keys.png");
+    let (mut h, _image) = train_app("keys.png");
     for label in [
         "1 background",
         "2 object",
@@ -140,7 +140,7 @@ fn the_train_tool_has_keys_a_legend_and_a_brush_size() {
 
 #[test]
 fn the_train_tool_computes_the_features_before_the_first_stroke() {
-    let (mut h, _) = train_app("warm.png");
+    let (mut h, _image) = train_app("warm.png");
     assert!(!h.state().doc.train.painted(), "no stroke yet");
     let start = std::time::Instant::now();
     loop {
@@ -164,7 +164,7 @@ fn the_train_tool_computes_the_features_before_the_first_stroke() {
 
 #[test]
 fn a_stroke_updates_the_probability_map_in_the_background() {
-    let (mut h, _) = train_app("stroke.png");
+    let (mut h, _image) = train_app("stroke.png");
     paint_both(&mut h);
     let train = &h.state().doc.train;
     assert!(train.trainable(), "object and background painted");
@@ -194,7 +194,7 @@ fn a_stroke_updates_the_probability_map_in_the_background() {
 
 #[test]
 fn undo_removes_a_stroke() {
-    let (mut h, _) = train_app("undo.png");
+    let (mut h, _image) = train_app("undo.png");
     paint_both(&mut h);
     let before = h.state().doc.train.labels.clone();
     h.key_press(egui::Key::Num2);
@@ -220,7 +220,7 @@ fn undo_removes_a_stroke() {
 
 #[test]
 fn the_run_reads_the_map_and_starts_again_on_a_new_one() {
-    let (mut h, _) = train_app("run.png");
+    let (mut h, _image) = train_app("run.png");
     paint_both(&mut h);
     wait_for_map(&mut h);
     h.state_mut().send(Command::FindSeeds);
@@ -244,7 +244,7 @@ fn the_run_reads_the_map_and_starts_again_on_a_new_one() {
 
 #[test]
 fn strokes_survive_saving_and_opening_a_session() {
-    let (mut h, _) = train_app("session.png");
+    let (mut h, _image) = train_app("session.png");
     paint_both(&mut h);
     h.state_mut().send(Command::FindSeeds);
     h.state_mut().send(Command::Step(20));
@@ -253,7 +253,8 @@ fn strokes_survive_saving_and_opening_a_session() {
     let rings = h.state().shown_record().unwrap().rings.clone();
     let path = save_session(&mut h, "strokes.session.json");
     let mut h2 = harness(TopoApp::default());
-    h2.state_mut().send(Command::OpenSession(path));
+    h2.state_mut()
+        .send(Command::OpenSession(path.to_path_buf()));
     h2.step();
     assert_no_error(&h2);
     assert_eq!(h2.state().doc.train.labels, labels);
@@ -267,14 +268,16 @@ fn strokes_survive_saving_and_opening_a_session() {
 
 #[test]
 fn a_classifier_saves_and_loads_onto_another_image() {
-    let (mut h, _) = train_app("classifier.png");
+    let (mut h, _image) = train_app("classifier.png");
     paint_both(&mut h);
     let file = temp("disks.classifier.json");
-    h.state_mut().send(Command::SaveClassifier(file.clone()));
+    h.state_mut()
+        .send(Command::SaveClassifier(file.to_path_buf()));
     h.step();
     assert_no_error(&h);
-    let (mut h2, _) = train_app("classifier2.png");
-    h2.state_mut().send(Command::LoadClassifier(file));
+    let (mut h2, _image2) = train_app("classifier2.png");
+    h2.state_mut()
+        .send(Command::LoadClassifier(file.to_path_buf()));
     h2.step();
     assert_no_error(&h2);
     assert!(h2.state().doc.train.loaded.is_some());
@@ -287,7 +290,7 @@ fn a_classifier_saves_and_loads_onto_another_image() {
 #[test]
 fn a_taught_wrap_runs_as_the_command_line_runs_it() {
     use topocontour::evolution::Mode;
-    let (mut h, _) = train_app("wrap.png");
+    let (mut h, _image) = train_app("wrap.png");
     paint_both(&mut h);
     wait_for_map(&mut h);
     h.state_mut().send(Command::WrapBorder(4.0));

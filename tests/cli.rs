@@ -9,10 +9,9 @@ fn cases_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/cases")
 }
 
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("topocontour-test-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
+/// The path `name` in a fresh folder of its own, removed with the returned guard.
+fn tmp(name: &str) -> common::Scratch {
+    common::Scratch::file(name)
 }
 
 fn gray_png(path: &Path) -> (u32, u32, Vec<u8>) {
@@ -32,7 +31,7 @@ fn dice(a: &[u8], b: &[u8]) -> f64 {
 }
 
 /// Runs a case as score_cases.py does; returns the JSON and the mask path.
-fn run_case(name: &str, extra: &[&str]) -> (serde_json::Value, PathBuf) {
+fn run_case(name: &str, extra: &[&str]) -> (serde_json::Value, common::Scratch) {
     static RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let run = RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let dir = cases_dir().join(name);
@@ -610,6 +609,7 @@ fn roi_set_reads_back() {
 fn replay_equals_segment() {
     let img = tmp("replay-image.png");
     std::fs::copy(cases_dir().join("phase_cells/image.png"), &img).unwrap();
+    let mut sessions = Vec::new();
     for mode in ["adaptive", "preserve", "implicit"] {
         for init in [&["--wrap", "6"][..], &["--auto-seeds"][..]] {
             let (a, b, s) = (
@@ -639,10 +639,11 @@ fn replay_equals_segment() {
                 std::fs::read(&b).unwrap(),
                 "{mode} {init:?}: replay differs"
             );
+            sessions.push(s);
         }
     }
-    // The image changes: the session refuses it.
-    let s = tmp("replay-adaptive-2.session");
+    // The image changes: the session (adaptive, wrapped) refuses it.
+    let s = &sessions[0];
     std::fs::copy(cases_dir().join("blobs_wrap/image.png"), &img).unwrap();
     let out = bin()
         .args(["replay", s.to_str().unwrap()])
@@ -765,9 +766,9 @@ fn wrap_opens_a_ring_hole_unless_told_not_to() {
         run_ok(
             bin()
                 .arg("segment")
-                .arg(&input)
+                .arg(&*input)
                 .args(["--wrap", "4", "--object", "bright", "--json"])
-                .arg(&json)
+                .arg(&*json)
                 .args(extra),
         );
         let doc = read_json(&json);
@@ -790,12 +791,12 @@ fn objects_below_the_least_area_are_dropped_with_a_note() {
         let out = run_ok(
             bin()
                 .arg("segment")
-                .arg(&input)
+                .arg(&*input)
                 .args([
                     "--object", "dark", "--seed", "60,60,6", "--seed", "14,110,1",
                 ])
                 .args(["--seed", "34,110,1", "--json"])
-                .arg(&json)
+                .arg(&*json)
                 .args(extra),
         );
         let objects = read_json(&json)["contours"].as_array().unwrap().len();

@@ -7,7 +7,7 @@ mod common;
 use common::{bin, disks_png, read_json, run_ok, s};
 use std::path::PathBuf;
 
-fn workdir(name: &str) -> PathBuf {
+fn workdir(name: &str) -> common::Scratch {
     common::workdir("job", name)
 }
 
@@ -84,7 +84,7 @@ fn folder_job_finds_seeds_per_image() {
             auto_seeds: true,
             ..Job::new(PathBuf::new(), Vec::new(), params)
         },
-        out: d.clone(),
+        out: d.to_path_buf(),
     };
     assert_eq!(job.run_one(&narrow).unwrap().len(), 1);
     assert_eq!(

@@ -9,7 +9,7 @@ use common::{bin, disks_png, names, refused, run_ok, s};
 use std::path::{Path, PathBuf};
 
 /// A folder `in` holding one small image under each of `names`.
-fn inputs(test: &str, names: &[&str]) -> (PathBuf, PathBuf) {
+fn inputs(test: &str, names: &[&str]) -> (common::Scratch, PathBuf) {
     let d = common::workdir("batch", test);
     let input = d.join("in");
     std::fs::create_dir_all(&input).unwrap();
@@ -71,7 +71,7 @@ fn names_equal_but_for_case_are_refused() {
 /// next run would segment it); with only JSON it is fine and touches no input.
 #[test]
 fn out_in_the_input_folder_never_feeds_back() {
-    let (_, input) = inputs("feedback", &["x.png", "y.png"]);
+    let (_dir, input) = inputs("feedback", &["x.png", "y.png"]);
     let before: Vec<Vec<u8>> = ["x.png", "y.png"]
         .iter()
         .map(|n| std::fs::read(input.join(n)).unwrap())

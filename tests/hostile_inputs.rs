@@ -20,10 +20,9 @@ fn within<T: Send + 'static>(secs: u64, f: impl FnOnce() -> T + Send + 'static) 
         .unwrap_or_else(|_| panic!("still running after {secs} s"))
 }
 
-fn tmp(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("topocontour-inputs-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
+/// The path `name` in a fresh folder of its own, removed with the returned guard.
+fn tmp(name: &str) -> common::Scratch {
+    common::Scratch::file(name)
 }
 
 /// A 64² float image: a dark disc on a bright background, in arbitrary units.
@@ -56,8 +55,7 @@ fn float_tiff_pages_decode_alike_and_nan_never_reaches_the_engine() {
         }
     }
     for page in 0..2 {
-        let p = path.clone();
-        let (image, info) = load_image_page(&p, page).unwrap();
+        let (image, info) = load_image_page(&path, page).unwrap();
         assert_eq!(info.pages, 2);
         assert!(image
             .data

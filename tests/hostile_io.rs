@@ -13,10 +13,8 @@ mod common;
 use common::{bin, run_within};
 
 /// A fresh folder of this test's own, with a copy of a small case image as input.
-fn workdir(name: &str) -> (PathBuf, PathBuf) {
-    let d = std::env::temp_dir().join(format!("topocontour-hostile-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
+fn workdir(name: &str) -> (common::Scratch, PathBuf) {
+    let d = common::workdir("hostile", name);
     let input = d.join("input.png");
     std::fs::copy(
         Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/cases/phase_cells/image.png"),
@@ -202,7 +200,7 @@ fn an_unwritable_second_output_leaves_no_first() {
 
 #[test]
 fn huge_seed_radii_are_refused_at_once() {
-    let (_, input) = workdir("radius");
+    let (_dir, input) = workdir("radius");
     for r in ["1e6", "1e30"] {
         let t = Instant::now();
         expect_refused(
@@ -332,7 +330,7 @@ fn a_full_or_closed_stderr_keeps_the_exit_codes() {
 
 #[test]
 fn usage_errors_are_one_line() {
-    let (_, input) = workdir("usage");
+    let (_dir, input) = workdir("usage");
     expect_refused(
         &["segment", s(&input), "--wrap", "4", "--object", "purple"],
         "possible values: dark, bright",

@@ -9,7 +9,7 @@ use common::{bin, disks_png, names, refused, run_ok, s};
 use std::path::{Path, PathBuf};
 
 /// A folder with `img.png` and its session `s.json` (from `segment --save-session`).
-fn with_session(name: &str) -> (PathBuf, PathBuf, PathBuf) {
+fn with_session(name: &str) -> (common::Scratch, PathBuf, PathBuf) {
     let d = common::workdir("sessions", name);
     let img = d.join("img.png");
     disks_png(&img, 64, 48, &[(20.0, 24.0, 9.0), (44.0, 24.0, 8.0)]);

@@ -4,8 +4,9 @@ mod common;
 
 use topocontour::io::load_image;
 
-fn tmp(name: &str) -> std::path::PathBuf {
-    std::env::temp_dir().join(format!("topocontour-load-{}-{name}", std::process::id()))
+/// The path `name` in a fresh folder of its own, removed with the returned guard.
+fn tmp(name: &str) -> common::Scratch {
+    common::Scratch::file(name)
 }
 
 #[test]
@@ -36,10 +37,11 @@ fn a_sixteen_bit_image_of_a_narrow_range_reads_as_its_full_range() {
     let v: Vec<u16> = img.into_raw();
     let g = topocontour::io::field_from_samples("a", 32, 32, topocontour::io::Samples::U16(&v));
     assert_eq!(g.unwrap().data, f.data);
+    let json = tmp("narrow.json");
     let out = common::bin()
         .args(["segment", "--object", "dark", "--auto-seeds", "--json"])
-        .arg(tmp("narrow.json"))
-        .arg(&p)
+        .arg(&*json)
+        .arg(&*p)
         .output()
         .unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
@@ -146,15 +148,15 @@ fn planar_rgb_pages_become_luminance_of_all_three_planes() {
 #[test]
 fn a_movie_of_one_colour_page_says_so() {
     // Three frames written as one (3, H, W) array become one RGB page.
-    let p = tmp("one-colour-page.tif");
+    let (p, out) = (tmp("one-colour-page.tif"), tmp("one-colour-page-out"));
     std::fs::write(&p, planar_rgb(1, 16, 16, (10, 200, 30))).unwrap();
     common::refused(
         common::bin()
             .arg("track")
-            .arg(&p)
+            .arg(&*p)
             .args(["--object", "dark", "--ctc"])
-            .arg(tmp("one-colour-page-out")),
+            .arg(&*out),
         "one page of 3 samples per pixel",
     );
-    assert!(!tmp("one-colour-page-out").exists());
+    assert!(!out.exists());
 }

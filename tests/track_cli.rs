@@ -3,14 +3,13 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 use tiff::encoder::{colortype::Gray16, TiffEncoder};
 
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("topocontour-track-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
+/// The path `name` in a fresh folder of its own, removed with the returned guard.
+fn tmp(name: &str) -> common::Scratch {
+    common::Scratch::file(name)
 }
 
 /// A 16-bit movie in a narrow range (100 background, 260 cells, as a dim camera gives):

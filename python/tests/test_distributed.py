@@ -7,6 +7,7 @@ object larger than the overlap."""
 import os
 import signal
 import subprocess
+import tempfile
 import threading
 import time
 from pathlib import Path
@@ -214,11 +215,13 @@ def test_segment_large_takes_dask_and_zarr(client, tmp_path):
     da = pytest.importorskip("dask.array")
     zarr = pytest.importorskip("zarr")
     img, _ = blobs(1100, 120, 3)
-    ref = segment_large(img, tile=512, overlap=128, client=client, object="dark").labels_array()
+    ref = segment_large(img, tile=512, overlap=128, client=client, object="dark",
+                        out=tmp_path / "ref.zarr").labels_array()
     z = zarr.open_array(tmp_path / "in.zarr", mode="w", shape=img.shape, chunks=(256, 256), dtype="u1")
     z[...] = img
-    for given in (da.from_array(img, chunks=300), z):
-        got = segment_large(given, tile=512, overlap=128, client=client, object="dark")
+    for k, given in enumerate((da.from_array(img, chunks=300), z)):
+        got = segment_large(given, tile=512, overlap=128, client=client, object="dark",
+                            out=tmp_path / f"got{k}.zarr")
         assert np.array_equal(got.labels_array(), ref)
 
 
@@ -227,13 +230,17 @@ def test_segment_large_takes_dask_and_zarr(client, tmp_path):
     (300, (512, 600), 60, r"give overlap=512 or more"),
     (300, (512, 600), None, r"larger than the 128 px overlap"),  # no tile sees it whole
 ])
-def test_object_larger_than_overlap_is_refused(client, radius, centre, others, says):
+def test_object_larger_than_overlap_is_refused(client, radius, centre, others, says,
+                                               tmp_path, monkeypatch):
     img = np.full((1200, 1200), 200, np.uint8) if others is None else blobs(1200, others, 11)[0]
     yy, xx = np.mgrid[0:1200, 0:1200]
     img[np.hypot(xx - centre[0], yy - centre[1]) < radius] = 60
+    # The labels go to a temporary folder of the run's own, removed when it is refused.
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
     with pytest.raises(ValueError, match=says) as e:
         segment_large(img, tile=512, overlap=128, client=client, object="dark")
     assert "\n" not in str(e.value)
+    assert list(tmp_path.iterdir()) == []
     with pytest.raises(ValueError, match="2-D"):
         segment_large(np.zeros((4, 4, 4), np.uint8), client=client)
 
@@ -257,7 +264,8 @@ def test_an_object_on_a_seam_comes_out_once(client, tmp_path):
         img = np.minimum(img, 200 - 140 * np.clip(r + 0.5 - d, 0, 1))
     img += rng.normal(0, 8, img.shape)
     img = np.clip(img, 0, 255).astype(np.uint8)
-    big = segment_large(img, tile=tile, overlap=128, client=client, object="dark")
+    big = segment_large(img, tile=tile, overlap=128, client=client, object="dark",
+                        out=tmp_path / "seams.zarr")
     outer = [c for c in big.contours if not c["hole"]]
     centres = np.array([c["points"].mean(0) for c in outer])
     ours = [int(np.argmin(np.hypot(centres[:, 0] - x, centres[:, 1] - y))) for x, y in cells]

@@ -31,6 +31,7 @@ import json
 import math
 import os
 import re
+import shutil
 import tempfile
 import uuid
 from dataclasses import dataclass, field
@@ -503,40 +504,46 @@ def segment_large(array, *, tile=4096, overlap=None, client, out=None, reach=16,
         overlap = max(128, (tile // 8) // 64 * 64)
     if tile <= 0 or overlap < 0:
         raise ValueError(f"tile ({tile}) must be positive and overlap ({overlap}) not negative")
+    made = out is None  # a folder of our own, removed again if the run fails
     out = str(out) if out is not None else tempfile.mkdtemp(suffix=".zarr")
-    labels = zarr.open_array(out, mode="w", shape=(height, width), chunks=(tile, tile),
-                             dtype="uint32", fill_value=0)
-    tiles = _grid(height, width, tile, overlap)
-    segs = [client.submit(_segment_tile, _tile_data(client, array, region), core, region,
-                          (height, width), overlap, reach, params, pure=False)
-            for core, region in tiles]
-    counted = client.gather([client.submit(  # only counts, probes and seams come here
-        lambda r: (r[0], len(r[1]), r[2],
-                   [(j, *o["seam"]) for j, o in enumerate(r[1]) if o["seam"] is not None])
-        if r[0] == "ok" else r, s) for s in segs])
-    refused = [c[1] for c in counted if c[0] == "refused"]
-    if refused:
-        raise ValueError(refused[0])
-    drop = _settle_seams(tiles, [c[3] for c in counted])
-    segs = [client.submit(lambda r, d: (r[0], [o for j, o in enumerate(r[1]) if j not in d], r[2]),
-                          s, sorted(d)) for s, d in zip(segs, drop)]
-    firsts = np.concatenate([[1], 1 + np.cumsum([c[1] - len(d) for c, d in zip(counted, drop)])])[:-1]
-    per_row = math.ceil(width / tile)
-    writes = []
-    for t, (core, _) in enumerate(tiles):
-        ty, tx = divmod(t, per_row)
-        near = [n for n in range(len(tiles))
-                if abs(n // per_row - ty) <= 1 and abs(n % per_row - tx) <= 1]
-        pieces = [client.submit(lambda r, f: (f, r[1]), segs[n], int(firsts[n])) for n in near]
-        probes = [p for n in near for p in counted[n][2]
-                  if core[0] <= p[0] < core[1] and core[2] <= p[1] < core[3]]
-        writes.append(client.submit(_write_chunk, out, core, pieces, probes, pure=False))
-    lost = [p for w in client.gather(writes) for p in w]
-    if lost:
-        raise ValueError(f"an object at ({lost[0][1]}, {lost[0][0]}) is larger than the "
-                         f"{overlap} px overlap, so no tile sees it whole: give segment_large "
-                         f"a larger overlap (the largest object plus {reach} px)")
-    return LargeResult(_gather_contours(segs, firsts), labels, tile, overlap)
+    try:
+        labels = zarr.open_array(out, mode="w", shape=(height, width), chunks=(tile, tile),
+                                 dtype="uint32", fill_value=0)
+        tiles = _grid(height, width, tile, overlap)
+        segs = [client.submit(_segment_tile, _tile_data(client, array, region), core, region,
+                              (height, width), overlap, reach, params, pure=False)
+                for core, region in tiles]
+        counted = client.gather([client.submit(  # only counts, probes and seams come here
+            lambda r: (r[0], len(r[1]), r[2],
+                       [(j, *o["seam"]) for j, o in enumerate(r[1]) if o["seam"] is not None])
+            if r[0] == "ok" else r, s) for s in segs])
+        refused = [c[1] for c in counted if c[0] == "refused"]
+        if refused:
+            raise ValueError(refused[0])
+        drop = _settle_seams(tiles, [c[3] for c in counted])
+        segs = [client.submit(lambda r, d: (r[0], [o for j, o in enumerate(r[1]) if j not in d], r[2]),
+                              s, sorted(d)) for s, d in zip(segs, drop)]
+        firsts = np.concatenate([[1], 1 + np.cumsum([c[1] - len(d) for c, d in zip(counted, drop)])])[:-1]
+        per_row = math.ceil(width / tile)
+        writes = []
+        for t, (core, _) in enumerate(tiles):
+            ty, tx = divmod(t, per_row)
+            near = [n for n in range(len(tiles))
+                    if abs(n // per_row - ty) <= 1 and abs(n % per_row - tx) <= 1]
+            pieces = [client.submit(lambda r, f: (f, r[1]), segs[n], int(firsts[n])) for n in near]
+            probes = [p for n in near for p in counted[n][2]
+                      if core[0] <= p[0] < core[1] and core[2] <= p[1] < core[3]]
+            writes.append(client.submit(_write_chunk, out, core, pieces, probes, pure=False))
+        lost = [p for w in client.gather(writes) for p in w]
+        if lost:
+            raise ValueError(f"an object at ({lost[0][1]}, {lost[0][0]}) is larger than the "
+                             f"{overlap} px overlap, so no tile sees it whole: give segment_large "
+                             f"a larger overlap (the largest object plus {reach} px)")
+        return LargeResult(_gather_contours(segs, firsts), labels, tile, overlap)
+    except BaseException:
+        if made:
+            shutil.rmtree(out, ignore_errors=True)
+        raise
 
 
 def _gather_contours(segs, firsts):

@@ -61,15 +61,19 @@ pub fn bright_bridge_with_seeds(disks: &[(f64, f64, f64)]) -> TopoApp {
     app
 }
 
-/// A path in the temporary folder, unique to this test process.
-pub fn temp(name: &str) -> std::path::PathBuf {
-    std::env::temp_dir().join(format!("topocontour-{}-{name}", std::process::id()))
+#[path = "../common/scratch.rs"]
+mod scratch;
+pub use scratch::Scratch;
+
+/// The path `name` in a fresh temporary folder, removed when the guard is dropped.
+pub fn temp(name: &str) -> Scratch {
+    Scratch::file(name)
 }
 
 /// Saves the session of `h` to a temporary file, checking no error showed; its path.
-pub fn save_session(h: &mut Harness<'_, TopoApp>, name: &str) -> std::path::PathBuf {
+pub fn save_session(h: &mut Harness<'_, TopoApp>, name: &str) -> Scratch {
     let path = temp(name);
-    h.state_mut().send(Command::SaveSession(path.clone()));
+    h.state_mut().send(Command::SaveSession(path.to_path_buf()));
     h.step();
     assert_no_error(h);
     path

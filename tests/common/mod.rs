@@ -2,7 +2,7 @@
 //! images, runs with a deadline.
 #![allow(dead_code)]
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
@@ -10,12 +10,13 @@ pub fn bin() -> Command {
     Command::new(env!("CARGO_BIN_EXE_topocontour"))
 }
 
-/// A fresh folder of this test's own (`group` keeps test files apart).
-pub fn workdir(group: &str, name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("topocontour-{group}-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+mod scratch;
+pub use scratch::Scratch;
+
+/// A fresh folder of this test's own (`group` keeps test files apart), removed when the
+/// returned guard is dropped.
+pub fn workdir(group: &str, name: &str) -> Scratch {
+    Scratch::folder(&format!("{group}-{name}"))
 }
 
 pub fn s(p: &Path) -> &str {
