@@ -24,8 +24,34 @@ fn open_app(image: Option<std::path::PathBuf>) -> Result<(), Failure> {
     // No display, or no GL: eframe says so; report it as one line, exit 1.
     topocontour::app::run_app(image).map_err(|e| Failure {
         code: 1,
-        message: format!("cannot open the window: {e}"),
+        message: format!(
+            "cannot open the window: {}; the subcommands run without one (topocontour --help)",
+            without_source_location(&e).trim_end_matches('.')
+        ),
     })
+}
+
+/// `message` without the source locations a library puts in its errors (winit's "os
+/// error at /home/…/src/platform_impl/linux/mod.rs:765: …"): they name a file on the
+/// machine that built the binary, nothing the user can act on.
+#[cfg(feature = "gui")]
+fn without_source_location(message: &str) -> String {
+    let mut out = message.to_string();
+    while let Some(at) = out.find(" at /") {
+        let rest = &out[at + 4..];
+        // The location ends at the ".rs:LINE" that follows, then ": " or the end.
+        let Some(rs) = rest.find(".rs:") else { break };
+        let digits = rest[rs + 4..]
+            .chars()
+            .take_while(char::is_ascii_digit)
+            .count();
+        if digits == 0 {
+            break;
+        }
+        let end = at + 4 + rs + 4 + digits;
+        out.replace_range(at..end, "");
+    }
+    out
 }
 
 #[cfg(not(feature = "gui"))]
@@ -92,5 +118,21 @@ fn main() {
     if let Err(f) = result {
         note(&f.message);
         std::process::exit(f.code);
+    }
+}
+
+#[cfg(all(test, feature = "gui"))]
+mod tests {
+    use super::without_source_location;
+
+    #[test]
+    fn a_library_error_loses_its_source_location_and_keeps_its_reason() {
+        let winit = "winit EventLoopError: os error at /root/.cargo/registry/src/index.crates.io-1949cf8c6b5b557f/winit-0.30.13/src/platform_impl/linux/mod.rs:765: neither WAYLAND_DISPLAY nor WAYLAND_SOCKET nor DISPLAY is set.";
+        assert_eq!(
+            without_source_location(winit),
+            "winit EventLoopError: os error: neither WAYLAND_DISPLAY nor WAYLAND_SOCKET nor DISPLAY is set."
+        );
+        let plain = "no GL context at /dev/dri: permission denied";
+        assert_eq!(without_source_location(plain), plain);
     }
 }

@@ -109,6 +109,15 @@ fn out_that_is_not_a_folder_is_refused_as_such() {
     assert_eq!(std::fs::read(&file).unwrap(), b"keep");
 }
 
+/// `--out` is made if missing, but not a tree of folders: a mistyped path is refused.
+#[test]
+fn out_in_a_missing_folder_is_refused() {
+    let (d, input) = inputs("tree", &["a.png"]);
+    let out = d.join("missing").join("out");
+    refused(&mut batch(&input, &out, "json"), "missing does not exist");
+    assert!(!d.join("missing").exists());
+}
+
 /// `--out` naming a symbolic link to nothing says so (it said "File exists").
 #[test]
 fn out_that_is_a_dangling_link_is_refused_as_such() {

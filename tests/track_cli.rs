@@ -99,8 +99,13 @@ fn a_sixteen_bit_movie_gives_the_ctc_layout() {
 #[test]
 fn bad_movies_are_refused_before_any_output() {
     for (name, sizes, says) in [
-        ("one", vec![(80, 64)], "at least two"),
-        ("sizes", vec![(80, 64), (80, 64), (64, 64)], "same size"),
+        ("one", vec![(80, 64)], "holds 1 frame: a movie needs at least two"),
+        (
+            "sizes",
+            vec![(80, 64), (80, 64), (64, 64)],
+            // Frames count from 0 here as in the masks; the page, as Fiji counts it.
+            "frame 2 (page 3) is 64×64 but frame 0 is 80×64; every frame of a movie must have the same size",
+        ),
     ] {
         let (m, out) = (tmp(&format!("{name}.tif")), tmp(&format!("{name}-res")));
         movie(&m, &sizes);
@@ -221,6 +226,9 @@ fn an_overlay_sequence_over_a_longer_one_leaves_no_frame_of_it() {
         let want = ["000", "0009", "001", "002", "12", "2024", "keep"];
         let want: Vec<String> = want.iter().map(|k| format!("{prefix}.{k}.png")).collect();
         assert_eq!(names, want);
+        // Drawn four times the movie's size, so a label does not hide a small cell.
+        let frame = image::open(d.join(format!("{prefix}.001.png"))).unwrap();
+        assert_eq!((frame.width(), frame.height()), (320, 256));
     }
 }
 
@@ -444,4 +452,46 @@ fn a_division_the_next_frame_takes_back_is_written_as_one_cell() {
         .collect();
     assert_eq!(frame3.len(), 1, "{rows}");
     assert!(frame3[0].starts_with("1,3,"), "{rows}");
+}
+
+/// A `--ctc` folder is made, but not a tree of them: its own folder must exist, as a file
+/// output's must (a mistyped path is an error, not new folders).
+#[test]
+fn a_ctc_folder_in_a_missing_folder_is_refused() {
+    let (m, out) = (tmp("tree.tif"), tmp("missing"));
+    movie(&m, &[(80, 64); 2]);
+    let run = track(&m, &out.join("a").join("res"));
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{err}");
+    assert!(err.contains("missing/a does not exist"), "{err}");
+    assert!(!out.exists());
+    tracked(&track(&m, &out), &out, "1 0 1 0\n");
+}
+
+/// Cells tracked with the wrong `--object` are the background cut into regions: the run
+/// says so, and says nothing when the polarity is right.
+#[test]
+fn cells_covering_most_of_frame_0_suggest_the_other_object() {
+    let m = tmp("polarity.tif");
+    movie(&m, &[(80, 64); 2]);
+    let run = |object: &str| {
+        let out = tmp(&format!("polarity-{object}"));
+        let run = Command::new(env!("CARGO_BIN_EXE_topocontour"))
+            .arg("track")
+            .arg(&*m)
+            .args(["--object", object, "--ctc"])
+            .arg(&*out)
+            .output()
+            .unwrap();
+        assert!(run.status.success());
+        String::from_utf8_lossy(&run.stderr).into_owned()
+    };
+    let wrong = run("dark");
+    assert!(
+        wrong.contains("if the cells are not darker than their background, give --object bright"),
+        "{wrong}"
+    );
+    let right = run("bright");
+    assert!(!right.contains("note"), "{right}");
+    assert!(right.contains("1 track, 0 divisions"), "{right}");
 }

@@ -88,7 +88,8 @@ pub fn track(
             {
                 return Err(bad(MovieError::SizeDiffers {
                     path: label,
-                    frame: t + 1,
+                    frame: t,
+                    at: String::new(),
                     width: fw,
                     height: fh,
                     first_width: w,

@@ -97,7 +97,7 @@ def test_bad_movies_and_flags_raise_the_cli_message(tmp_path, cli):
         assert str(e.value) == cli_message(err)
     # Frames of different sizes (a list of 2-D arrays): refused before tracking, as the CLI
     # refuses such a movie.
-    with pytest.raises(ValueError, match=r"frame 2 is 100×80 but frame 1 is 120×90; every frame of a movie must have the same size$"):
+    with pytest.raises(ValueError, match=r"frame 1 is 100×80 but frame 0 is 120×90; every frame of a movie must have the same size$"):
         tc.track([m[0], m[1][:80, :100], m[2]])
     with pytest.raises(ValueError, match=r"^the movie must be a 3-D array \(frames, height, width\), got shape \(90, 120\)$"):
         tc.track(m[0])

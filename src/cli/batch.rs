@@ -115,8 +115,7 @@ pub fn batch(a: &BatchArgs) -> Result<(), Failure> {
             a.out.display()
         )));
     }
-    std::fs::create_dir_all(&a.out)
-        .map_err(|e| bad(format!("cannot create {}: {e}", a.out.display())))?;
+    super::output_folder("--out", &a.out)?;
     refuse_out_in_input(a)?;
     // The summary is prepared like every output: checked before any work.
     let summary_path = a.out.join("summary.csv");

@@ -25,7 +25,7 @@ pub use train::{classifier_of, train, TrainArgs};
 
 use clap::{Parser, Subcommand};
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Polygonal active contours that change topology correctly.
 #[derive(Parser, Debug)]
@@ -89,6 +89,32 @@ fn bad(message: impl Into<String>) -> Failure {
         code: 2,
         message: message.into(),
     }
+}
+
+/// Makes the output folder `dir` (`flag` names it in messages) unless it exists; its own
+/// folder must exist, as a file output's must: a mistyped path is an error, not a new
+/// tree of folders.
+fn output_folder(flag: &str, dir: &Path) -> Result<(), Failure> {
+    if dir.is_dir() {
+        return Ok(());
+    }
+    let parent = dir
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    if !parent.is_dir() {
+        return Err(bad(format!(
+            "{flag} {}: folder {} does not exist",
+            dir.display(),
+            parent.display()
+        )));
+    }
+    std::fs::create_dir(dir).map_err(|e| {
+        bad(format!(
+            "{flag} {}: cannot make the folder: {e}",
+            dir.display()
+        ))
+    })
 }
 
 /// Writes a line to stderr; a full or closed stderr loses the line, never the run.

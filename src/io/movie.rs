@@ -30,7 +30,7 @@ pub enum MovieError {
     #[error("{0}")]
     Load(#[from] LoadError),
     /// Fewer than two frames.
-    #[error("{path} holds {frames} frame(s): a movie needs at least two (pages of a TIFF, or images in a folder)")]
+    #[error("{path} holds {frames} frame{}: a movie needs at least two (pages of a TIFF, or images in a folder)", if *.frames == 1 { "" } else { "s" })]
     TooShort {
         /// The movie.
         path: String,
@@ -67,12 +67,15 @@ pub enum MovieError {
         pages: usize,
     },
     /// A frame whose size differs from the first.
-    #[error("{path}: frame {frame} is {width}×{height} but frame 1 is {first_width}×{first_height}; every frame of a movie must have the same size")]
+    #[error("{path}: frame {frame}{at} is {width}×{height} but frame 0 is {first_width}×{first_height}; every frame of a movie must have the same size")]
     SizeDiffers {
         /// The movie.
         path: String,
-        /// The frame, from 1.
+        /// The frame, from 0 as everywhere else (the masks, the tracks, `--overlay-frame`).
         frame: usize,
+        /// Where it is read from, for the user to find it: ` (page N)` of a TIFF (pages
+        /// count from 1, as Fiji's slices), ` (NAME)` of a folder, or nothing.
+        at: String,
         /// Its width.
         width: usize,
         /// Its height.
@@ -159,9 +162,17 @@ impl Movie {
             if t == 0 {
                 (movie.width, movie.height) = (f.width, f.height);
             } else if (f.width, f.height) != (movie.width, movie.height) {
+                let at = match &movie.source {
+                    Source::Stack(_) => format!(" (page {})", t + 1),
+                    Source::Files(files) => files[t]
+                        .file_name()
+                        .map(|n| format!(" ({})", n.to_string_lossy()))
+                        .unwrap_or_default(),
+                };
                 return Err(MovieError::SizeDiffers {
                     path: movie.name.clone(),
-                    frame: t + 1,
+                    frame: t,
+                    at,
                     width: f.width,
                     height: f.height,
                     first_width: movie.width,
@@ -302,7 +313,7 @@ impl Iterator for Frames {
                         self.next = MAX_FRAMES;
                         return Some(Err(decode_error(
                             &self.name,
-                            format!("page {}: {e}", t + 1),
+                            format!("frame {t} (page {}): {e}", t + 1),
                         )));
                     }
                 }

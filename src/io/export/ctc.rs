@@ -126,23 +126,38 @@ fn colour(label: u32) -> [u8; 3] {
     PALETTE[(label as usize).wrapping_mul(5) % PALETTE.len()]
 }
 
-/// Frame `image` in gray with each cell's outline in its track's colour and the track's
-/// label beside it, as RGB bytes.
-pub fn overlay_rgb(image: &Field, frame: &TrackedFrame) -> Vec<u8> {
+/// An overlay is drawn at least this many pixels on its longer side (the frame scaled up
+/// by a whole factor, at most [`OVERLAY_MAX_SCALE`]): at a movie's own size a label
+/// covers a small cell and runs into its neighbours' labels.
+pub const OVERLAY_SIDE: usize = 1024;
+
+/// The largest factor a frame is scaled up by for its overlay.
+pub const OVERLAY_MAX_SCALE: usize = 4;
+
+/// One tracked frame drawn over its image, scaled up by a whole factor (nearest pixel)
+/// to at least [`OVERLAY_SIDE`] on its longer side: each track's outline in its colour,
+/// its label on it. RGB bytes and their width and height.
+pub fn overlay_rgb(image: &Field, frame: &TrackedFrame) -> (Vec<u8>, usize, usize) {
     let (w, h) = (image.width, image.height);
-    let mut rgb: Vec<u8> = image
-        .data
-        .iter()
-        .flat_map(|&v| [(v.clamp(0.0, 1.0) * 255.0) as u8; 3])
-        .collect();
+    let k = OVERLAY_SIDE
+        .div_ceil(w.max(h).max(1))
+        .clamp(1, OVERLAY_MAX_SCALE);
+    let (sw, sh) = (w * k, h * k);
+    let mut rgb = vec![0u8; sw * sh * 3];
+    for (i, px) in rgb.chunks_exact_mut(3).enumerate() {
+        let (x, y) = (i % sw / k, i / sw / k);
+        px.fill((image.data[y * w + x].clamp(0.0, 1.0) * 255.0) as u8);
+    }
+    let scaled = |p: crate::geometry::Point| p * k as f64;
     for o in &frame.objects {
         let c = colour(o.track);
         for i in 0..o.ring.len() {
-            draw_segment(&mut rgb, w, h, o.ring[i], o.ring[(i + 1) % o.ring.len()], c);
+            let (a, b) = (o.ring[i], o.ring[(i + 1) % o.ring.len()]);
+            draw_segment(&mut rgb, sw, sh, scaled(a), scaled(b), c);
         }
-        draw_number(&mut rgb, w, h, o.centroid, o.track, c);
+        draw_number(&mut rgb, sw, sh, scaled(o.centroid), o.track, c);
     }
-    rgb
+    (rgb, sw, sh)
 }
 
 /// RGB bytes as PNG.
