@@ -510,7 +510,12 @@ fn a_wrong_split_undone_by_hand_tracks_the_frames_after_it_again() {
     for t in 0..4 {
         assert_eq!(tr.frames[t], before.frames[t], "frame {t}");
     }
-    assert!(h.get_by_label_contains("corrected: 4").rect().width() > 0.0);
+    assert!(
+        h.get_by_label_contains("corrected by hand: frame 4")
+            .rect()
+            .width()
+            > 0.0
+    );
     // Undo brings the tracking before the correction back, division and all.
     h.state_mut().send(Command::Undo);
     h.step();
@@ -558,7 +563,7 @@ fn a_tracked_and_corrected_movie_saved_as_a_session_reopens_as_it_was() {
         "the document's own parameters"
     );
     assert_ne!(p.mode, topocontour::evolution::Mode::Track);
-    again.get_by_label_contains("corrected: 4");
+    again.get_by_label_contains("corrected by hand: frame 4");
     assert!(
         close_window(&mut again),
         "nothing changed since it was opened"

@@ -117,7 +117,13 @@ impl TopoApp {
                 Err(e) => self.status.error = Some(e),
             },
             Command::ExportDialog(kind) => {
-                let name = kind.file_name(&super::path_prompt::stem(&self.doc.image_name));
+                // A movie's frame is exported alone: its number is in the name.
+                let mut stem = super::path_prompt::stem(&self.doc.image_name);
+                if let Some(m) = &self.doc.movie {
+                    let digits = (m.movie.len() - 1).to_string().len().max(3);
+                    stem = format!("{stem}.frame{:0digits$}", m.frame);
+                }
+                let name = kind.file_name(&stem);
                 let d = self
                     .dialog()
                     .add_filter(kind.extension(), &[kind.extension()])

@@ -197,7 +197,15 @@ impl TopoApp {
             },
             Command::ExportCtcDialog => match self.dialog().pick_folder() {
                 Some(p) => self.apply_now(Command::ExportCtc(p)),
-                None => self.prompt_path(super::PathPurpose::ExportCtc, String::new()),
+                // Beside the movie, not into its folder: the challenge's own layout
+                // keeps a sequence's result in `NAME_RES` next to it.
+                None => {
+                    let name = self.doc.movie.as_ref().map_or(String::new(), |m| {
+                        let stem = m.movie.path().file_stem().unwrap_or_default();
+                        format!("{}_RES", stem.to_string_lossy())
+                    });
+                    self.prompt_path(super::PathPurpose::ExportCtc, name)
+                }
             },
             _ => unreachable!("not a movie command: {c:?}"),
         }

@@ -250,16 +250,30 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
         let written: Vec<String> = (0..tracked)
             .map(|t| ctc::mask_name(t, movie.len()))
             .collect();
-        ctc::remove_stale_masks(dir, &written).map_err(|e| {
+        let removed = ctc::remove_stale_masks(dir, &written).map_err(|e| {
             bad(format!(
                 "cannot clear the old masks of {}: {e}",
                 dir.display()
             ))
         })?;
         write(&dir.join("res_track.txt"), lineage.ctc_text().as_bytes())?;
+        if removed > 0 {
+            note(&format!(
+                "note: removed {} of an earlier result from {}",
+                counted(removed, "mask"),
+                dir.display()
+            ));
+        }
     }
     if let (Some(out), None) = (&plan.overlay, a.overlay_frame) {
-        remove_stale_overlays(out, tracked, movie.len(), &movie.files())?;
+        let removed = remove_stale_overlays(out, tracked, movie.len(), &movie.files())?;
+        if removed > 0 {
+            note(&format!(
+                "note: removed {} of an earlier sequence beside {}",
+                counted(removed, "overlay frame"),
+                out.display()
+            ));
+        }
     }
     let mut contents = Vec::new();
     if a.json.is_some() {
@@ -529,16 +543,18 @@ fn write(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
 /// this run numbers its frames (`frames` of them, the same digit count), from frame
 /// `tracked` on. As for the CTC masks: a sequence written over a longer one, or stopped
 /// early, would otherwise go on with frames of another run. Files of other names or
-/// digit counts, links, and the movie's own `inputs` are left alone.
+/// digit counts, links, and the movie's own `inputs` are left alone. Returns how many
+/// it removed.
 fn remove_stale_overlays(
     out: &Path,
     tracked: usize,
     frames: usize,
     inputs: &[&Path],
-) -> Result<(), Failure> {
+) -> Result<usize, Failure> {
     let Some(dir) = folder_of(out) else {
-        return Ok(());
+        return Ok(0);
     };
+    let mut removed = 0;
     let digits = frame_digits(frames);
     let failed = |e: std::io::Error| {
         bad(format!(
@@ -562,9 +578,10 @@ fn remove_stale_overlays(
                 .is_ok_and(|p| inputs.contains(&p))
         {
             std::fs::remove_file(entry.path()).map_err(failed)?;
+            removed += 1;
         }
     }
-    Ok(())
+    Ok(removed)
 }
 
 /// `out`'s stem and extension, as a sequence's file names use them (`overlay`, `png`

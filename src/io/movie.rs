@@ -247,8 +247,19 @@ impl Movie {
                     }
                     .into());
                 }
-                let dec = tiff::decoder::Decoder::new(std::io::BufReader::new(file))
-                    .map_err(|e| decode_error(&self.name, e.to_string()))?;
+                let dec = tiff::decoder::Decoder::new(std::io::BufReader::new(file)).map_err(|e| {
+                    match e {
+                        // Another kind of file given as the movie (a PNG, a case's JSON).
+                        tiff::TiffError::FormatError(
+                            tiff::TiffFormatError::TiffSignatureNotFound,
+                        ) => decode_error(
+                            &self.name,
+                            "it does not start as a TIFF does (a movie is a multi-page TIFF or a folder of images)"
+                                .into(),
+                        ),
+                        e => decode_error(&self.name, e.to_string()),
+                    }
+                })?;
                 Reader::Stack(Box::new(dec))
             }
             Source::Files(files) => Reader::Files(files.clone()),

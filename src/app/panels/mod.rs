@@ -42,7 +42,23 @@ fn command_button(cx: &mut Ctx, ui: &mut egui::Ui, label: &str, tip: &str, comma
 
 /// A menu entry with a tooltip that sends `command` and closes the menu.
 fn menu_entry(cx: &mut Ctx, ui: &mut egui::Ui, label: &str, tip: &str, command: Command) {
-    if ui.button(label).on_hover_text(tip).clicked() {
+    menu_entry_if(cx, ui, true, label, tip, command);
+}
+
+/// A menu entry that can be chosen only when `enabled` (greyed out otherwise).
+fn menu_entry_if(
+    cx: &mut Ctx,
+    ui: &mut egui::Ui,
+    enabled: bool,
+    label: &str,
+    tip: &str,
+    command: Command,
+) {
+    if ui
+        .add_enabled(enabled, egui::Button::new(label))
+        .on_hover_text(tip)
+        .clicked()
+    {
         cx.send(command);
         ui.close();
     }
@@ -96,9 +112,16 @@ fn files_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
             Command::OpenMovieDialog(true),
         );
         ui.separator();
-        menu_entry(
+        let tracked = cx
+            .doc
+            .movie
+            .as_ref()
+            .and_then(|m| m.tracking.as_ref())
+            .is_some_and(|t| !t.frames.is_empty());
+        menu_entry_if(
             cx,
             ui,
+            tracked,
             "Export tracks (CTC)…",
             "maskTTT.tif per frame and res_track.txt, the Cell Tracking Challenge result layout",
             Command::ExportCtcDialog,

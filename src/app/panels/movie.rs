@@ -73,7 +73,8 @@ pub(in crate::app) fn movie_bar(cx: &mut Ctx, ui: &mut egui::Ui) {
         }
         if let Some(tr) = m.tracking.as_ref().filter(|t| !t.corrected.is_empty()) {
             let frames: Vec<String> = tr.corrected.iter().map(usize::to_string).collect();
-            ui.label(format!("corrected: {}", frames.join(", ")))
+            let which = if frames.len() == 1 { "frame" } else { "frames" };
+            ui.label(format!("corrected by hand: {which} {}", frames.join(", ")))
                 .on_hover_text("frames you corrected by hand (Edit or Brush tool on a tracked frame); the frames after each were tracked again from it");
         }
         let tracked = m.tracking.as_ref().is_some_and(|t| !t.frames.is_empty());

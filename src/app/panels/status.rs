@@ -80,8 +80,18 @@ fn figures_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
         ));
     }
     let status = cx.status;
+    // A movie's frame on screen, then the evolution's frame (which starts again at 0 on
+    // each movie frame a hand correction opens).
+    let movie = cx.doc.movie.as_ref().map_or(String::new(), |m| {
+        format!("  |  movie frame {} of 0–{}", m.frame, m.movie.len() - 1)
+    });
+    let frame = if movie.is_empty() {
+        format!("frame {frame}")
+    } else {
+        format!("evolution frame {frame}")
+    };
     ui.label(format!(
-        "{}  |  frame {frame}  |  {verts} vertices  |  {contours} contours  |  area {area:.0} px²  |  step {:.2} ms  draw {:.2} ms{}",
+        "{}{movie}  |  {frame}  |  {verts} vertices  |  {contours} contours  |  area {area:.0} px²  |  step {:.2} ms  draw {:.2} ms{}",
         cx.doc.image_name,
         status.step_ms,
         status.draw_ms,

@@ -32,15 +32,18 @@ pub fn is_result_name(name: &str) -> bool {
 /// `mask` + digits + `.tif` other than `written` (this run's, by name). A folder used
 /// before would otherwise keep frames past this movie's end (or of another digit count)
 /// beside the new ones, and be no valid result. Called once the new result is written.
-pub fn remove_stale_masks(dir: &std::path::Path, written: &[String]) -> std::io::Result<()> {
+/// Returns how many it removed (the user is told: they were files in a folder they chose).
+pub fn remove_stale_masks(dir: &std::path::Path, written: &[String]) -> std::io::Result<usize> {
+    let mut removed = 0;
     for entry in std::fs::read_dir(dir)? {
         let entry = entry?;
         let name = entry.file_name().to_string_lossy().into_owned();
         if is_mask_name(&name) && !written.contains(&name) && entry.file_type()?.is_file() {
             std::fs::remove_file(entry.path())?;
+            removed += 1;
         }
     }
-    Ok(())
+    Ok(removed)
 }
 
 /// A label raster as a 16-bit TIFF (`tiff`) or PNG; `None` beyond 65,535 labels.
