@@ -666,3 +666,75 @@ fn a_cell_deleted_ends_its_track_and_later_corrections_are_asked_about() {
     assert!(h.state().jobs.track.is_none());
     assert_eq!(tracking(&h).corrected.len(), 1);
 }
+
+/// A cell deleted by hand changes nothing else: the frames after the correction are
+/// tracked again as the first run tracked them (the tracker resumes with what it
+/// remembered of the frame), the division of a rod elsewhere included. The deleted cell's
+/// track ends; the speck, still in the image, is found again later as a new cell.
+#[test]
+fn a_correction_leaves_the_cells_it_did_not_touch_as_they_were() {
+    let rod = |a: f64, b: f64| (Point::new(a, 32.0), Point::new(b, 32.0), 6.0);
+    let speck = (Point::new(86.0, 9.0), Point::new(86.0, 9.0), 5.0);
+    let mut frames: Vec<_> = [10.0, 12.0, 14.0, 16.0]
+        .map(|h| frame(96, 64, &[rod(48.0 - h, 48.0 + h), speck]))
+        .into();
+    for gap in [3.0, 4.0, 5.0, 6.0] {
+        let cells = [rod(24.0, 42.0 - gap), rod(54.0 + gap, 72.0), speck];
+        frames.push(frame(96, 64, &cells));
+    }
+    let (mut h, _movie) = tracked_movie("untouched", &frames);
+    let before = tracking(&h);
+    let far = |f: &topocontour::track::TrackedFrame| {
+        f.objects
+            .iter()
+            .max_by(|a, b| a.centroid.x.total_cmp(&b.centroid.x))
+            .map(|o| o.track)
+    };
+    let gone = far(&before.frames[1]).unwrap();
+    h.state_mut().send(Command::SeekMovieFrame(1));
+    h.step();
+    click_label(&mut h, "Edit");
+    h.step();
+    let at = h.state().screen_from_image(Point::new(86.0, 9.0));
+    click_at(&mut h, at);
+    h.key_press(egui::Key::Delete);
+    h.step();
+    h.step();
+    wait_for_tracking(&mut h);
+    let tr = tracking(&h);
+    assert_eq!(
+        tr.lineage.get(gone).unwrap().last,
+        0,
+        "the deleted cell's track ends"
+    );
+    // The tracks started after the correction may be numbered otherwise (the speck found
+    // again takes a number first).
+    let divisions = |t: &topocontour::app::Tracking| {
+        t.divisions()
+            .map(|d| (d.frame, d.parent))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(divisions(&tr), [(4, 1)], "the rod divides as it did");
+    assert_eq!(divisions(&before), [(4, 1)]);
+    for t in 2..8 {
+        let rods = |f: &topocontour::track::TrackedFrame| {
+            let speck = far(f);
+            let mut cells = f
+                .objects
+                .iter()
+                .filter(|o| Some(o.track) != speck)
+                .map(|o| (o.area, o.centroid))
+                .collect::<Vec<_>>();
+            cells.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
+            cells
+        };
+        let (again, was) = (rods(&tr.frames[t]), rods(&before.frames[t]));
+        assert_eq!(again.len(), was.len(), "frame {t}");
+        for ((a, c), (a0, c0)) in again.into_iter().zip(was) {
+            assert!(
+                (a - a0).abs() < 0.01 * a0 && c.dist(c0) < 0.2,
+                "frame {t}: {a} {a0} {c:?} {c0:?}"
+            );
+        }
+    }
+}

@@ -6,7 +6,7 @@
 use topocontour::evolution::{Field, Modality, Params, Polarity, Shape};
 use topocontour::geometry::Point;
 use topocontour::io::movie::normalise;
-use topocontour::track::{TrackSettings, Tracker};
+use topocontour::track::{TrackSettings, TrackedFrame, Tracker};
 
 const W: usize = 96;
 const H: usize = 64;
@@ -928,4 +928,113 @@ fn in_phase_contrast_a_rod_does_not_divide_into_a_piece_far_smaller_than_the_col
     assert_eq!(lines[..8], rods, "{text}");
     // The piece let go may be picked up later as a new cell, never as a daughter.
     assert!(lines.iter().all(|l| l.ends_with(" 0")), "{text}");
+}
+
+/// Twelve frames with what a tracker must remember across them: a nucleus that stays, a
+/// rod that divides into two round daughters pushed apart, a cell entering from the right
+/// and one appearing from nothing (each picked up by the new-cell look, which a tracker
+/// schedules).
+fn eventful() -> Vec<Field> {
+    (0..12)
+        .map(|t| {
+            let tf = t as f64;
+            let mut cells = vec![disk(16.0, 14.0, 7.0)];
+            if t < 6 {
+                let half = 6.0 + tf;
+                cells.push((
+                    Point::new(48.0 - half, 40.0),
+                    Point::new(48.0 + half, 40.0),
+                    6.0,
+                ));
+            } else {
+                let apart = 12.0 + 2.0 * (tf - 6.0);
+                cells.push(disk(48.0 - apart, 40.0, 7.0));
+                cells.push(disk(48.0 + apart, 40.0, 7.0));
+            }
+            if t >= 4 {
+                cells.push(disk(100.0 - 4.0 * (tf - 4.0), 12.0, 8.0));
+            }
+            if t >= 7 {
+                cells.push(disk(60.0, 14.0, 6.0));
+            }
+            blurred(frame(&cells))
+        })
+        .collect()
+}
+
+/// The frames a tracker gives for `movie` from `tracker` on, each as the next revised it,
+/// and the lineage at the end.
+fn run_on(mut tracker: Tracker, movie: &[Field]) -> (Vec<TrackedFrame>, String) {
+    let mut out: Vec<TrackedFrame> = Vec::new();
+    for f in movie {
+        let frame = tracker.step(f).unwrap();
+        if let Some(before) = out.last_mut() {
+            before.revise(&frame);
+        }
+        out.push(frame);
+    }
+    (out, tracker.lineage().ctc_text())
+}
+
+/// A tracker resumed from any frame with what the tracker that tracked it remembered
+/// goes on exactly as that tracker did: a hand correction re-tracks the frames after it
+/// as the run would have, changed only by what the correction changed. Resumed from the
+/// contours alone, it does not (it looks for new cells at once, knows no births).
+#[test]
+fn a_tracker_resumed_with_its_memory_goes_on_as_the_run_did() {
+    let movie = eventful();
+    let settings = TrackSettings::new(Params {
+        polarity: Polarity::Bright,
+        ..Params::default()
+    });
+    let mut tracker = Tracker::new(settings.clone(), Vec::new());
+    let (mut frames, mut memories, mut lineages) = (Vec::new(), Vec::new(), Vec::new());
+    for f in &movie {
+        let frame = tracker.step(f).unwrap();
+        if let Some(before) = frames.last_mut() {
+            TrackedFrame::revise(before, &frame);
+        }
+        frames.push(frame);
+        memories.push(tracker.memory());
+        lineages.push(tracker.lineage().clone());
+    }
+    let whole = tracker.lineage().ctc_text();
+    assert!(
+        whole.lines().count() >= 5,
+        "the movie's events were tracked: {whole}"
+    );
+    let mut forgetful_differs = false;
+    for t in 0..movie.len() - 1 {
+        // A frame the next revised is not where the run stood after it.
+        let next = &frames[t + 1];
+        if !(next.earlier.is_empty() && next.undone.is_empty()) {
+            continue;
+        }
+        let resumed = |memory| {
+            let mut r = Tracker::resume(
+                settings.clone(),
+                lineages[t].clone(),
+                &frames[t],
+                W,
+                H,
+                memory,
+            );
+            r.set_previous(movie[t].clone());
+            run_on(r, &movie[t + 1..])
+        };
+        let memory = memories[t].corrected(&frames[t], &frames[t]);
+        let (again, lineage) = resumed(Some(memory));
+        let differs = again.iter().zip(&frames[t + 1..]).position(|(a, b)| a != b);
+        assert_eq!(
+            differs, None,
+            "resumed after frame {t}: frames differ from this one on"
+        );
+        assert_eq!(lineage, whole, "resumed after frame {t}");
+        let (forgetful, lineage) = resumed(None);
+        forgetful_differs |= forgetful != frames[t + 1..] || lineage != whole;
+    }
+    assert!(
+        forgetful_differs,
+        "the memory made no difference: the movie tests nothing"
+    );
 }

@@ -153,6 +153,12 @@ impl TopoApp {
         tr.id = super::movie::next_tracking_id();
         tr.frames.truncate(t);
         tr.frames.push(frame.clone());
+        // What the tracker knew after frame t, less what the correction changed.
+        let memory = tr.memory.get(&t).map(|m| m.corrected(&old, &frame));
+        tr.memory.retain(|&k, _| k < t);
+        if let Some(m) = &memory {
+            tr.memory.insert(t, Arc::new(m.clone()));
+        }
         tr.lineage = lineage.clone();
         tr.stopped = None;
         tr.corrected.retain(|&f| f < t);
@@ -162,7 +168,8 @@ impl TopoApp {
         let id = tr.id;
         match settings.filter(|_| t + 1 < len) {
             Some(s) => {
-                self.spawn_tracking(Tracker::resume(s, lineage, &frame, w, h), t + 1, id);
+                let tracker = Tracker::resume(s, lineage, &frame, w, h, memory);
+                self.spawn_tracking(tracker, t + 1, id);
                 self.status.notify(format!(
                     "frame {t} corrected ({summary}): frames {}–{} are tracked again from it",
                     t + 1,

@@ -11,7 +11,9 @@ use super::{Command, Document, TopoApp};
 use crate::evolution::Field;
 use crate::io::export::ctc;
 use crate::io::movie::Movie;
-use crate::track::{carry::label_raster, Division, Lineage, TrackSettings, TrackedFrame, Tracker};
+use crate::track::{
+    carry::label_raster, Division, Lineage, Memory, TrackSettings, TrackedFrame, Tracker,
+};
 use std::collections::{BTreeSet, HashMap};
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -54,6 +56,10 @@ pub struct Tracking {
     pub corrected: BTreeSet<usize>,
     /// A job was tracking into it (Undo back to it takes tracking up again).
     pub running: bool,
+    /// What the tracker remembered after each frame it tracked, by frame
+    /// ([`crate::track::Memory`]): a correction resumes tracking with it (not in a
+    /// session: a reopened one resumes without).
+    pub memory: HashMap<usize, Arc<Memory>>,
     /// The tracker as Cancel stopped it after the last frame: Continue goes on with it,
     /// so a cancelled and continued tracking is the one that ran on. None after a
     /// correction (the frames after it start from the corrected contours).
@@ -95,8 +101,9 @@ pub struct TrackJob {
 
 /// What the tracking thread sends.
 enum Message {
-    /// One more frame: its result, the lineage so far, the image.
-    Frame(Arc<TrackedFrame>, Lineage, Arc<Field>),
+    /// One more frame: its result, the lineage so far, the image, what the tracker
+    /// remembers after it.
+    Frame(Arc<TrackedFrame>, Lineage, Arc<Field>, Arc<Memory>),
     /// A frame could not be read or tracked.
     Failed(String),
     /// Cancel stopped the tracker (after the frame last sent).
@@ -389,7 +396,10 @@ impl TopoApp {
         // resumes from the last frame's contours.
         let tracker = match tr.stopped.take().filter(|t| t.next_frame() == from) {
             Some(t) => Arc::unwrap_or_clone(t),
-            None => Tracker::resume(settings.clone(), tr.lineage.clone(), &last, w, h),
+            None => {
+                let memory = tr.memory.get(&last.frame).map(|m| Memory::clone(m));
+                Tracker::resume(settings.clone(), tr.lineage.clone(), &last, w, h, memory)
+            }
         };
         let changed = TrackSettings::new(self.doc.params().clone()).params != settings.params;
         self.spawn_tracking(tracker, from, id);
@@ -436,9 +446,12 @@ impl TopoApp {
                     .map_err(|e| e.to_string())
                     .and_then(|img| Ok((tracker.step(&img).map_err(|e| e.to_string())?, img)));
                 let msg = match step {
-                    Ok((f, img)) => {
-                        Message::Frame(Arc::new(f), tracker.lineage().clone(), Arc::new(img))
-                    }
+                    Ok((f, img)) => Message::Frame(
+                        Arc::new(f),
+                        tracker.lineage().clone(),
+                        Arc::new(img),
+                        Arc::new(tracker.memory()),
+                    ),
                     Err(e) => Message::Failed(e),
                 };
                 let failed = matches!(msg, Message::Failed(_));
@@ -478,12 +491,14 @@ impl TopoApp {
         let (mut newest, mut failure) = (None, None);
         while let Ok(msg) = job.rx.try_recv() {
             match msg {
-                Message::Frame(f, lineage, image) => {
+                Message::Frame(f, lineage, image, memory) => {
                     job.done += 1;
                     let t = f.frame;
                     self.view.frames.put(t, image.clone());
                     if let Some(tr) = tracking_with(&mut self.doc, job.tracking) {
                         tr.frames.truncate(t);
+                        tr.memory.retain(|&k, _| k < t);
+                        tr.memory.insert(t, memory);
                         // This frame may revise the one before (a division taken back or
                         // dated there).
                         if let Some(before) = tr
@@ -681,6 +696,7 @@ impl TopoApp {
                 corrected: s.corrected.into_iter().collect(),
                 running: false,
                 stopped: None,
+                memory: HashMap::new(),
             });
         }
         self.show_movie_frame(s.shown);

@@ -78,6 +78,7 @@ mod resume;
 pub mod side;
 
 pub use lineage::{Division, Lineage, Track};
+pub use resume::Memory;
 
 use crate::evolution::{find_seeds, EvolveError, Evolver, Field, Mode, Params, Shape};
 use crate::geometry::{signed_area, Point};

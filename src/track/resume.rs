@@ -1,20 +1,89 @@
 //! Tracking on from a frame already tracked: the app's hand corrections of frame t
 //! (a wrong split undone, a merge forced) make a new frame t, and the frames after it
 //! are tracked again from its contours, as [`Tracker::step`] would have from its own.
+//!
+//! A tracker carries more than the last frame's contours: when it looks for new cells
+//! next, the size each young rod was born at, the necks it measured, the divisions whose
+//! daughters were born apart ([`Memory`]). Resumed without them, the frames after a
+//! correction were tracked differently far from it (new cells looked for at once, a
+//! neighbour's division lost), so the app keeps each frame's memory and a resumed tracker
+//! takes it back, less what the correction changed: a corrected frame stays as the user
+//! left it, so no neck or parted division of a changed cell revises it.
 
 use super::carry::label_raster;
-use super::{Lineage, TrackSettings, TrackedFrame, Tracker};
+use super::neck::Neck;
+use super::{Division, Lineage, Size, TrackSettings, TrackedFrame, Tracker};
 use crate::geometry::Point;
+use std::collections::HashMap;
+
+/// What a tracker remembers of the frames before its next one, beyond their contours
+/// and tracks ([`Tracker::memory`]).
+#[derive(Clone, Debug, Default)]
+pub struct Memory {
+    next_seeding: usize,
+    residual: usize,
+    look_residual: bool,
+    apart: Vec<Division>,
+    necks: HashMap<u32, (Neck, Option<f64>)>,
+    born: HashMap<u32, Size>,
+}
+
+impl Memory {
+    /// This memory for frame `old` as corrected into `new`: what it knew of a cell whose
+    /// outline the correction changed (or that it removed) is forgotten.
+    pub fn corrected(&self, old: &TrackedFrame, new: &TrackedFrame) -> Memory {
+        let ring = |f: &TrackedFrame, k: u32| {
+            f.objects
+                .iter()
+                .find(|o| o.track == k)
+                .map(|o| o.ring.clone())
+        };
+        let kept = |k: u32| ring(new, k).is_some_and(|r| Some(r) == ring(old, k));
+        Memory {
+            apart: self
+                .apart
+                .iter()
+                .filter(|d| d.children.iter().all(|&c| kept(c)))
+                .copied()
+                .collect(),
+            necks: (self.necks.iter())
+                .filter(|(k, _)| kept(**k))
+                .map(|(k, v)| (*k, v.clone()))
+                .collect(),
+            born: (self.born.iter())
+                .filter(|(k, _)| new.objects.iter().any(|o| o.track == **k))
+                .map(|(k, v)| (*k, *v))
+                .collect(),
+            ..self.clone()
+        }
+    }
+}
 
 impl Tracker {
+    /// What this tracker remembers beyond the last frame's contours and the tracks: with
+    /// them, [`Tracker::resume`] gives a tracker that goes on as this one would.
+    pub fn memory(&self) -> Memory {
+        Memory {
+            next_seeding: self.next_seeding,
+            residual: self.residual,
+            look_residual: self.look_residual,
+            apart: self.apart.clone(),
+            necks: self.necks.clone(),
+            born: self.born.clone(),
+        }
+    }
+
     /// A tracker whose next frame is `last.frame + 1`, started from `last`'s cells, with
-    /// the tracks so far `lineage`, on `width`×`height` frames.
+    /// the tracks so far `lineage`, on `width`×`height` frames, and what the tracker that
+    /// tracked `last` remembered (`memory`; without it, new cells are looked for at once
+    /// and nothing is known of the cells' births and necks).
     pub fn resume(
         settings: TrackSettings,
         lineage: Lineage,
         last: &TrackedFrame,
         width: usize,
         height: usize,
+        memory: Option<Memory>,
     ) -> Self {
         let mut t = Tracker::new(settings, Vec::new());
         t.lineage = lineage;
@@ -30,6 +99,14 @@ impl Tracker {
             .collect();
         t.labels = label_raster(&rings, width, height);
         t.frame = last.frame + 1;
+        if let Some(m) = memory {
+            t.next_seeding = m.next_seeding;
+            t.residual = m.residual;
+            t.look_residual = m.look_residual;
+            t.apart = m.apart;
+            t.necks = m.necks;
+            t.born = m.born;
+        }
         t
     }
 }
