@@ -316,6 +316,23 @@ fn the_lineage_view_selects_a_track_and_shows_its_frame() {
     click_at(&mut h, at(1.0, 0.0));
     assert_eq!(h.state().view.selected_track, Some(1));
     assert_eq!(movie_frame(&h), 1);
+    // Under the pointer, a row says which track it is and what it became.
+    h.ctx.all_styles_mut(|s| s.interaction.tooltip_delay = 0.0);
+    for (frame, row, says) in [
+        (2.0, 0.0, "track 1, frames 0–3, divided into 2 and 3"),
+        (5.0, 1.0, "track 2, frames 4–7, from 1"),
+    ] {
+        // The view moves down as the Objects table above it grows.
+        let r = h.get_by_label("Lineage view").rect();
+        h.hover_at(egui::pos2(
+            r.min.x + 4.0 + (r.width() - 8.0) * frame / 7.0,
+            r.min.y + 8.0 + 10.0 * (row + 0.5),
+        ));
+        for _ in 0..3 {
+            h.step();
+        }
+        h.get_by_label(says);
+    }
 }
 
 #[test]

@@ -558,9 +558,12 @@ impl TopoApp {
         let divisions = tr.divisions().count();
         let n = tr.frames.len();
         let stopped = if n < len { " (stopped)" } else { "" };
+        let tracks = tr.lineage.tracks().len();
+        let s = |n: usize| if n == 1 { "" } else { "s" };
         format!(
-            "tracked {n} of {len} frames{stopped}: {} tracks, {divisions} divisions",
-            tr.lineage.tracks().len()
+            "tracked {n} of {len} frames{stopped}: {tracks} track{}, {divisions} division{}",
+            s(tracks),
+            s(divisions)
         )
     }
 

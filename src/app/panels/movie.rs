@@ -4,7 +4,7 @@
 //! children's), linked to the canvas: a click selects the track and shows that frame.
 
 use crate::app::{Command, Ctx};
-use crate::track::Track;
+use crate::track::{Lineage, Track};
 use egui::{Color32, Pos2, Rect, Sense, Stroke, Vec2};
 
 /// The movie's row in the status bar: frame slider, Track or Cancel with progress, export.
@@ -177,6 +177,31 @@ pub(in crate::app) fn lineage_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
         [Pos2::new(now, rect.min.y), Pos2::new(now, rect.max.y)],
         Stroke::new(1.0, Color32::from_gray(200)),
     );
+    // The frame axis: its ends, at the bottom corners.
+    let (font, grey) = (egui::FontId::monospace(9.0), Color32::from_gray(150));
+    let bottom = response.rect.max.y - 1.0;
+    painter.text(
+        Pos2::new(rect.min.x, bottom),
+        egui::Align2::LEFT_BOTTOM,
+        "0",
+        font.clone(),
+        grey,
+    );
+    painter.text(
+        Pos2::new(rect.max.x, bottom),
+        egui::Align2::RIGHT_BOTTOM,
+        format!("frame {frames}"),
+        font,
+        grey,
+    );
+    // What is under the pointer: the track, when it lived, what it came from and became.
+    let hovered = response.hover_pos().map(|p| layout.hit(p, tracks, &order));
+    let response = match hovered {
+        Some((track, frame)) => response.on_hover_ui_at_pointer(|ui| {
+            ui.label(describe_track(&tr.lineage, track, frame));
+        }),
+        None => response,
+    };
     if let Some(p) = response
         .interact_pointer_pos()
         .filter(|_| response.clicked())
@@ -185,6 +210,28 @@ pub(in crate::app) fn lineage_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
         cx.send(Command::SelectTrack(track));
         cx.send(Command::SeekMovieFrame(frame));
     }
+}
+
+/// The lineage view's words for `track` (or none) at `frame`: "track 4, frames 3–9, from
+/// 1, divided into 9 and 10".
+fn describe_track(lineage: &Lineage, track: Option<u32>, frame: usize) -> String {
+    let Some(t) = track.and_then(|k| lineage.get(k)) else {
+        return format!("frame {frame}");
+    };
+    let mut text = format!("track {}, frames {}–{}", t.label, t.first, t.last);
+    if t.parent != 0 {
+        text.push_str(&format!(", from {}", t.parent));
+    }
+    let children: Vec<String> = lineage
+        .tracks()
+        .iter()
+        .filter(|c| c.parent == t.label)
+        .map(|c| c.label.to_string())
+        .collect();
+    if !children.is_empty() {
+        text.push_str(&format!(", divided into {}", children.join(" and ")));
+    }
+    text
 }
 
 /// Where frames and rows of the lineage view are on screen.
