@@ -316,6 +316,8 @@ fn the_lineage_view_selects_a_track_and_shows_its_frame() {
     click_at(&mut h, at(1.0, 0.0));
     assert_eq!(h.state().view.selected_track, Some(1));
     assert_eq!(movie_frame(&h), 1);
+    // The status bar says which movie frame is on screen.
+    h.get_by_label("lineage  |  movie frame 1 of 0–7");
     // Under the pointer, a row says which track it is and what it became.
     h.ctx.all_styles_mut(|s| s.interaction.tooltip_delay = 0.0);
     for (frame, row, says) in [

@@ -85,18 +85,23 @@ fn figures_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
     let movie = cx.doc.movie.as_ref().map_or(String::new(), |m| {
         format!("  |  movie frame {} of 0–{}", m.frame, m.movie.len() - 1)
     });
-    let frame = if movie.is_empty() {
-        format!("frame {frame}")
+    if !movie.is_empty() && rec.is_none() {
+        // A tracked frame on screen with no run: its cells are in the Objects table.
+        ui.label(format!("{}{movie}", cx.doc.image_name));
     } else {
-        format!("evolution frame {frame}")
-    };
-    ui.label(format!(
-        "{}{movie}  |  {frame}  |  {verts} vertices  |  {contours} contours  |  area {area:.0} px²  |  step {:.2} ms  draw {:.2} ms{}",
-        cx.doc.image_name,
-        status.step_ms,
-        status.draw_ms,
-        if rec.is_some_and(|r| r.converged) { "  |  converged" } else { "" }
-    ));
+        let frame = if movie.is_empty() {
+            format!("frame {frame}")
+        } else {
+            format!("evolution frame {frame}")
+        };
+        ui.label(format!(
+            "{}{movie}  |  {frame}  |  {verts} vertices  |  {contours} contours  |  area {area:.0} px²  |  step {:.2} ms  draw {:.2} ms{}",
+            cx.doc.image_name,
+            status.step_ms,
+            status.draw_ms,
+            if rec.is_some_and(|r| r.converged) { "  |  converged" } else { "" }
+        ));
+    }
     if let Some(e) = &status.error {
         ui.colored_label(egui::Color32::from_rgb(255, 90, 90), format!("Error: {e}"));
     } else if let Some(n) = &status.notice {
