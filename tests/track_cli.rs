@@ -495,3 +495,50 @@ fn cells_covering_most_of_frame_0_suggest_the_other_object() {
     assert!(!right.contains("note"), "{right}");
     assert!(right.contains("1 track, 0 divisions"), "{right}");
 }
+
+/// Dark cells in a bright halo tracked as generic images: the run says they look like
+/// phase contrast; told so, it says nothing.
+#[test]
+fn dark_cells_in_a_bright_halo_suggest_phase_contrast() {
+    let m = tmp("halo.tif");
+    let mut enc = TiffEncoder::new(std::fs::File::create(&*m).unwrap()).unwrap();
+    let (w, h) = (96u32, 80u32);
+    for t in 0..3 {
+        let data: Vec<u16> = (0..w * h)
+            .map(|i| {
+                let (x, y) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
+                let d = [(30.0 + t as f64, 30.0), (64.0, 50.0 - t as f64)]
+                    .iter()
+                    .map(|&(cx, cy)| (x - cx).hypot(y - cy))
+                    .fold(f64::INFINITY, f64::min);
+                match d {
+                    d if d < 9.0 => 300,
+                    d if d < 11.0 => 1500,
+                    _ => 1000,
+                }
+            })
+            .collect();
+        enc.write_image::<Gray16>(w, h, &data).unwrap();
+    }
+    let run = |modality: &str| {
+        let out = tmp(&format!("halo-{modality}"));
+        let run = Command::new(env!("CARGO_BIN_EXE_topocontour"))
+            .arg("track")
+            .arg(&*m)
+            .args(["--object", "dark", "--modality", modality, "--ctc"])
+            .arg(&*out)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&run.stderr).into_owned();
+        assert!(run.status.success(), "{err}");
+        err
+    };
+    let generic = run("generic");
+    assert!(
+        generic.contains("as in phase contrast; --modality phase-contrast"),
+        "{generic}"
+    );
+    let phase = run("phase-contrast");
+    assert!(!phase.contains("note"), "{phase}");
+    assert!(phase.contains("2 tracks"), "{phase}");
+}

@@ -217,6 +217,11 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
             if let Some(hint) = object_hint(tracker.labels(), a.object) {
                 note(&hint);
             }
+            if (a.object, a.modality) == (Polarity::Dark, Modality::Generic)
+                && crate::image::modality::looks_haloed(&image, tracker.labels())
+            {
+                note("note: the cells wear a bright halo, as in phase contrast; --modality phase-contrast reads the halo as background and drops specks far smaller than the cells");
+            }
         }
         if let Some(mut before) = held.take() {
             before.frame.revise(&frame);
