@@ -757,3 +757,35 @@ fn a_correction_leaves_the_cells_it_did_not_touch_as_they_were() {
         }
     }
 }
+
+/// Dark cells in a bright halo tracked as a generic image: the tracking's summary says
+/// they look like phase contrast.
+#[test]
+fn a_haloed_movie_tracked_as_generic_suggests_phase_contrast() {
+    let frames: Vec<image::GrayImage> = (0..3)
+        .map(|t| {
+            image::GrayImage::from_fn(96, 80, |x, y| {
+                let (x, y) = (x as f64 + 0.5, y as f64 + 0.5);
+                let d = [(30.0 + t as f64, 30.0), (64.0, 50.0 - t as f64)]
+                    .iter()
+                    .map(|&(cx, cy)| (x - cx).hypot(y - cy))
+                    .fold(f64::INFINITY, f64::min);
+                image::Luma([match d {
+                    d if d < 9.0 => 30,
+                    d if d < 11.0 => 200,
+                    _ => 120,
+                }])
+            })
+        })
+        .collect();
+    let dir = movie_folder("haloed", &frames);
+    let mut app = TopoApp::default();
+    app.send(Command::OpenMovie(dir.to_path_buf()));
+    app.send(Command::SetPolarity(Polarity::Dark));
+    let mut h = harness(app);
+    h.step();
+    click_label(&mut h, "Track movie");
+    wait_for_tracking(&mut h);
+    let notice = h.state().status.notice.clone().unwrap_or_default();
+    assert!(notice.contains("as in phase contrast"), "{notice}");
+}

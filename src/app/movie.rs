@@ -8,7 +8,7 @@
 //! tracked frame track the frames after it again ([`super::correct`]).
 
 use super::{Command, Document, TopoApp};
-use crate::evolution::Field;
+use crate::evolution::{Field, Modality, Polarity};
 use crate::io::export::ctc;
 use crate::io::movie::Movie;
 use crate::track::{
@@ -60,6 +60,9 @@ pub struct Tracking {
     /// ([`crate::track::Memory`]): a correction resumes tracking with it (not in a
     /// session: a reopened one resumes without).
     pub memory: HashMap<usize, Arc<Memory>>,
+    /// What frame 0 suggests of the settings (dark cells in a bright halo on a generic
+    /// image: phase contrast), said with the tracking's summary.
+    pub hint: Option<&'static str>,
     /// The tracker as Cancel stopped it after the last frame: Continue goes on with it,
     /// so a cancelled and continued tracking is the one that ran on. None after a
     /// correction (the frames after it start from the corrected contours).
@@ -495,7 +498,22 @@ impl TopoApp {
                     job.done += 1;
                     let t = f.frame;
                     self.view.frames.put(t, image.clone());
+                    let p = self.doc.params();
+                    let generic_dark =
+                        (p.polarity, p.modality) == (Polarity::Dark, Modality::Generic);
                     if let Some(tr) = tracking_with(&mut self.doc, job.tracking) {
+                        if t == 0 && generic_dark {
+                            let (w, h) = (image.width, image.height);
+                            let rings: Vec<(u32, &[crate::geometry::Point])> = f
+                                .objects
+                                .iter()
+                                .map(|o| (o.track, o.ring.as_slice()))
+                                .collect();
+                            let labels = label_raster(&rings, w, h);
+                            tr.hint = crate::image::modality::looks_haloed(&image, &labels).then_some(
+                                "the cells wear a bright halo, as in phase contrast: choose image: phase-contrast and Track again",
+                            );
+                        }
                         tr.frames.truncate(t);
                         tr.memory.retain(|&k, _| k < t);
                         tr.memory.insert(t, memory);
@@ -560,8 +578,9 @@ impl TopoApp {
         let stopped = if n < len { " (stopped)" } else { "" };
         let tracks = tr.lineage.tracks().len();
         let s = |n: usize| if n == 1 { "" } else { "s" };
+        let hint = tr.hint.map_or(String::new(), |h| format!("; {h}"));
         format!(
-            "tracked {n} of {len} frames{stopped}: {tracks} track{}, {divisions} division{}",
+            "tracked {n} of {len} frames{stopped}: {tracks} track{}, {divisions} division{}{hint}",
             s(tracks),
             s(divisions)
         )
@@ -700,6 +719,7 @@ impl TopoApp {
                 running: false,
                 stopped: None,
                 memory: HashMap::new(),
+                hint: None,
             });
         }
         self.show_movie_frame(s.shown);
