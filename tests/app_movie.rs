@@ -606,6 +606,24 @@ fn a_tracked_and_corrected_movie_saved_as_a_session_reopens_as_it_was() {
     assert!(bad.state().doc.movie.is_none());
 }
 
+/// With the Edit tool, the cell of the frame on screen at `p` (image pixels) selected
+/// with a click and deleted; the tracking once the frames after are tracked again.
+fn delete_at(h: &mut Harness<'static, TopoApp>, p: Point) -> topocontour::app::Tracking {
+    click_label(h, "Edit");
+    h.step();
+    let at = h.state().screen_from_image(p);
+    click_at(h, at);
+    assert!(
+        h.state().view.selected_contour.is_some(),
+        "a click selects it"
+    );
+    h.key_press(egui::Key::Delete);
+    h.step();
+    h.step();
+    wait_for_tracking(h);
+    tracking(h)
+}
+
 #[test]
 fn a_cell_deleted_ends_its_track_and_later_corrections_are_asked_about() {
     let (mut h, _movie) = tracked_rod("delete", 6);
@@ -617,20 +635,7 @@ fn a_cell_deleted_ends_its_track_and_later_corrections_are_asked_about() {
         .unwrap()
         .track;
     let left = 5 - right;
-    click_label(&mut h, "Edit");
-    h.step();
-    // Select the right daughter with a click, then Delete.
-    let at = h.state().screen_from_image(Point::new(66.0, 32.0));
-    click_at(&mut h, at);
-    assert!(
-        h.state().view.selected_contour.is_some(),
-        "a click selects it"
-    );
-    h.key_press(egui::Key::Delete);
-    h.step();
-    h.step();
-    wait_for_tracking(&mut h);
-    let tr = tracking(&h);
+    let tr = delete_at(&mut h, Point::new(66.0, 32.0));
     assert_eq!(
         tr.lineage.get(right).unwrap().last,
         5,
@@ -712,15 +717,7 @@ fn a_correction_leaves_the_cells_it_did_not_touch_as_they_were() {
     let gone = far(&before.frames[1]).unwrap();
     h.state_mut().send(Command::SeekMovieFrame(1));
     h.step();
-    click_label(&mut h, "Edit");
-    h.step();
-    let at = h.state().screen_from_image(Point::new(86.0, 9.0));
-    click_at(&mut h, at);
-    h.key_press(egui::Key::Delete);
-    h.step();
-    h.step();
-    wait_for_tracking(&mut h);
-    let tr = tracking(&h);
+    let tr = delete_at(&mut h, Point::new(86.0, 9.0));
     assert_eq!(
         tr.lineage.get(gone).unwrap().last,
         0,

@@ -468,24 +468,29 @@ fn a_ctc_folder_in_a_missing_folder_is_refused() {
     tracked(&track(&m, &out), &out, "1 0 1 0\n");
 }
 
+/// What `track MOVIE ARGS --ctc OUT` says on stderr (it must succeed).
+fn notes_of(movie: &Path, args: &[&str]) -> String {
+    let out = tmp("notes");
+    let run = Command::new(env!("CARGO_BIN_EXE_topocontour"))
+        .arg("track")
+        .arg(movie)
+        .args(args)
+        .arg("--ctc")
+        .arg(&*out)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&run.stderr).into_owned();
+    assert!(run.status.success(), "{err}");
+    err
+}
+
 /// Cells tracked with the wrong `--object` are the background cut into regions: the run
 /// says so, and says nothing when the polarity is right.
 #[test]
 fn cells_covering_most_of_frame_0_suggest_the_other_object() {
     let m = tmp("polarity.tif");
     movie(&m, &[(80, 64); 2]);
-    let run = |object: &str| {
-        let out = tmp(&format!("polarity-{object}"));
-        let run = Command::new(env!("CARGO_BIN_EXE_topocontour"))
-            .arg("track")
-            .arg(&*m)
-            .args(["--object", object, "--ctc"])
-            .arg(&*out)
-            .output()
-            .unwrap();
-        assert!(run.status.success());
-        String::from_utf8_lossy(&run.stderr).into_owned()
-    };
+    let run = |object: &str| notes_of(&m, &["--object", object]);
     let wrong = run("dark");
     assert!(
         wrong.contains("if the cells are not darker than their background, give --object bright"),
@@ -520,19 +525,7 @@ fn dark_cells_in_a_bright_halo_suggest_phase_contrast() {
             .collect();
         enc.write_image::<Gray16>(w, h, &data).unwrap();
     }
-    let run = |modality: &str| {
-        let out = tmp(&format!("halo-{modality}"));
-        let run = Command::new(env!("CARGO_BIN_EXE_topocontour"))
-            .arg("track")
-            .arg(&*m)
-            .args(["--object", "dark", "--modality", modality, "--ctc"])
-            .arg(&*out)
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&run.stderr).into_owned();
-        assert!(run.status.success(), "{err}");
-        err
-    };
+    let run = |modality: &str| notes_of(&m, &["--object", "dark", "--modality", modality]);
     let generic = run("generic");
     assert!(
         generic.contains("as in phase contrast; --modality phase-contrast"),

@@ -248,18 +248,13 @@ pub fn corrected(
             .partial_cmp(&(b.centroid.x, b.centroid.y))
             .unwrap_or(std::cmp::Ordering::Equal)
     });
-    let was: Vec<(u32, &[Point])> = old
-        .objects
-        .iter()
-        .map(|o| (o.track, o.ring.as_slice()))
-        .collect();
     let now: Vec<(u32, &[Point])> = cells
         .iter()
         .enumerate()
         .map(|(k, c)| (k as u32 + 1, c.ring.as_slice()))
         .collect();
     let (was, now) = (
-        label_raster(&was, width, height),
+        old.label_raster(width, height),
         label_raster(&now, width, height),
     );
     let mut overlap: HashMap<(u32, u32), usize> = HashMap::new();

@@ -11,9 +11,7 @@ use super::{Command, Document, TopoApp};
 use crate::evolution::{Field, Modality, Polarity};
 use crate::io::export::ctc;
 use crate::io::movie::Movie;
-use crate::track::{
-    carry::label_raster, Division, Lineage, Memory, TrackSettings, TrackedFrame, Tracker,
-};
+use crate::track::{Division, Lineage, Memory, TrackSettings, TrackedFrame, Tracker};
 use std::collections::{BTreeSet, HashMap};
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -503,13 +501,7 @@ impl TopoApp {
                         (p.polarity, p.modality) == (Polarity::Dark, Modality::Generic);
                     if let Some(tr) = tracking_with(&mut self.doc, job.tracking) {
                         if t == 0 && generic_dark {
-                            let (w, h) = (image.width, image.height);
-                            let rings: Vec<(u32, &[crate::geometry::Point])> = f
-                                .objects
-                                .iter()
-                                .map(|o| (o.track, o.ring.as_slice()))
-                                .collect();
-                            let labels = label_raster(&rings, w, h);
+                            let labels = f.label_raster(image.width, image.height);
                             tr.hint = crate::image::modality::looks_haloed(&image, &labels).then_some(
                                 "the cells wear a bright halo, as in phase contrast: choose image: phase-contrast and Track again",
                             );
@@ -772,12 +764,7 @@ impl TopoApp {
 /// ([`crate::image::widen::to_edges`]).
 fn track_labels(f: &TrackedFrame, image: &Field, tiff: bool) -> Result<Vec<u8>, super::AppError> {
     let (w, h) = (image.width, image.height);
-    let rings: Vec<(u32, &[crate::geometry::Point])> = f
-        .objects
-        .iter()
-        .map(|o| (o.track, o.ring.as_slice()))
-        .collect();
-    let labels = crate::image::widen::to_edges(&label_raster(&rings, w, h), image);
+    let labels = crate::image::widen::to_edges(&f.label_raster(w, h), image);
     ctc::label_image(&labels, w, h, tiff)
         .ok_or_else(|| super::AppError::Movie("more than 65,535 tracks".into()))
 }

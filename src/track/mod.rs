@@ -296,6 +296,16 @@ pub struct Earlier {
 }
 
 impl TrackedFrame {
+    /// Its cells as a `width`×`height` raster of track labels (0 outside every cell).
+    pub fn label_raster(&self, width: usize, height: usize) -> Vec<u32> {
+        let rings: Vec<(u32, &[Point])> = self
+            .objects
+            .iter()
+            .map(|o| (o.track, o.ring.as_slice()))
+            .collect();
+        label_raster(&rings, width, height)
+    }
+
     /// This frame as `next` revised it: the divisions it took back
     /// ([`TrackedFrame::undone`]) are gone, their children's cells their parent's, one
     /// cell seen in two pieces; the divisions it dated here ([`TrackedFrame::earlier`])

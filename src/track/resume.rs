@@ -10,10 +10,8 @@
 //! takes it back, less what the correction changed: a corrected frame stays as the user
 //! left it, so no neck or parted division of a changed cell revises it.
 
-use super::carry::label_raster;
 use super::neck::Neck;
 use super::{Division, Lineage, Size, TrackSettings, TrackedFrame, Tracker};
-use crate::geometry::Point;
 use std::collections::HashMap;
 
 /// What a tracker remembers of the frames before its next one, beyond their contours
@@ -92,12 +90,7 @@ impl Tracker {
             .iter()
             .map(|o| (o.track, o.ring.clone()))
             .collect();
-        let rings: Vec<(u32, &[Point])> = last
-            .objects
-            .iter()
-            .map(|o| (o.track, o.ring.as_slice()))
-            .collect();
-        t.labels = label_raster(&rings, width, height);
+        t.labels = last.label_raster(width, height);
         t.frame = last.frame + 1;
         if let Some(m) = memory {
             t.next_seeding = m.next_seeding;
