@@ -37,19 +37,22 @@ fn open_app(image: Option<std::path::PathBuf>) -> Result<(), Failure> {
 #[cfg(feature = "gui")]
 fn without_source_location(message: &str) -> String {
     let mut out = message.to_string();
-    while let Some(at) = out.find(" at /") {
+    let mut from = 0;
+    while let Some(at) = out[from..].find(" at /").map(|k| k + from) {
+        // The location is one word: a path ending in ".rs:LINE" (then ": " or the end).
         let rest = &out[at + 4..];
-        // The location ends at the ".rs:LINE" that follows, then ": " or the end.
-        let Some(rs) = rest.find(".rs:") else { break };
-        let digits = rest[rs + 4..]
-            .chars()
-            .take_while(char::is_ascii_digit)
-            .count();
-        if digits == 0 {
-            break;
+        let word = &rest[..rest.find(char::is_whitespace).unwrap_or(rest.len())];
+        let line = word.find(".rs:").map(|rs| {
+            let digits = word[rs + 4..]
+                .chars()
+                .take_while(char::is_ascii_digit)
+                .count();
+            (rs + 4, digits)
+        });
+        match line {
+            Some((end, digits)) if digits > 0 => out.replace_range(at..at + 4 + end + digits, ""),
+            _ => from = at + 4,
         }
-        let end = at + 4 + rs + 4 + digits;
-        out.replace_range(at..end, "");
     }
     out
 }
@@ -134,5 +137,10 @@ mod tests {
         );
         let plain = "no GL context at /dev/dri: permission denied";
         assert_eq!(without_source_location(plain), plain);
+        let both = "no GL at /dev/dri: denied; os error at /src/x.rs:3: bad";
+        assert_eq!(
+            without_source_location(both),
+            "no GL at /dev/dri: denied; os error: bad"
+        );
     }
 }

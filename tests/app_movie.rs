@@ -718,6 +718,18 @@ fn a_correction_leaves_the_cells_it_did_not_touch_as_they_were() {
     h.state_mut().send(Command::SeekMovieFrame(1));
     h.step();
     let tr = delete_at(&mut h, Point::new(86.0, 9.0));
+    // The rod the correction did not touch keeps its place and size (the run opened for
+    // the correction puts points on its outline's edges): the resumed tracker knows it
+    // as the same cell.
+    let rod = |f: &topocontour::track::TrackedFrame| {
+        let o = f.objects.iter().find(|o| o.track == 1).unwrap();
+        (o.area, o.centroid)
+    };
+    let ((a, c), (a0, c0)) = (rod(&tr.frames[1]), rod(&before.frames[1]));
+    assert!(
+        (a - a0).abs() < 1e-6 * a0 && c.dist(c0) < 1e-6,
+        "{a} {a0} {c:?} {c0:?}"
+    );
     assert_eq!(
         tr.lineage.get(gone).unwrap().last,
         0,

@@ -153,7 +153,7 @@ impl TopoApp {
         tr.id = super::movie::next_tracking_id();
         tr.frames.truncate(t);
         tr.frames.push(frame.clone());
-        // What the tracker knew after frame t, less what the correction changed.
+        // What the tracker knew after frame t, less what the correction makes unsure.
         let memory = tr.memory.get(&t).map(|m| m.corrected(&old, &frame));
         tr.memory.retain(|&k, _| k < t);
         if let Some(m) = &memory {

@@ -78,7 +78,7 @@ mod resume;
 pub mod side;
 
 pub use lineage::{Division, Lineage, Track};
-pub use resume::Memory;
+pub use resume::{Memory, SAME_CELL};
 
 use crate::evolution::{find_seeds, EvolveError, Evolver, Field, Mode, Params, Shape};
 use crate::geometry::{signed_area, Point};
@@ -403,7 +403,8 @@ pub struct Tracker {
     /// neck's [`Neck::narrow`] the frame before ([`Tracker::date`]).
     necks: HashMap<u32, (Neck, Option<f64>)>,
     /// The size each track born of a division had in its first frame ([`MIN_GROWTH`]);
-    /// a tracker resumed after a correction knows none, as it knows no necks.
+    /// a tracker resumed after a correction knows those of the cells it left as they
+    /// were ([`Memory::corrected`]).
     born: HashMap<u32, Size>,
 }
 
@@ -1055,7 +1056,7 @@ impl Tracker {
     /// there becomes the two lobes of its neck, each the child it is nearer to (the
     /// lobes moved by `shift`, the field's drift since). A parent seen for one frame
     /// only keeps its division where it is. A tracker resumed after a correction has no
-    /// necks of the corrected frame, and never revises it.
+    /// necks of the corrected frame ([`Memory::corrected`]), and never revises it.
     fn date(&mut self, frame: &mut TrackedFrame, cut: &[u32], shift: Point) {
         let t = frame.frame;
         for d in frame.divisions.clone() {

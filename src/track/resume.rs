@@ -7,12 +7,16 @@
 //! daughters were born apart ([`Memory`]). Resumed without them, the frames after a
 //! correction were tracked differently far from it (new cells looked for at once, a
 //! neighbour's division lost), so the app keeps each frame's memory and a resumed tracker
-//! takes it back, less what the correction changed: a corrected frame stays as the user
-//! left it, so no neck or parted division of a changed cell revises it.
+//! takes it back, less what a correction makes unsure ([`Memory::corrected`]): the
+//! corrected frame stays as the user left it.
 
 use super::neck::Neck;
 use super::{Division, Lineage, Size, TrackSettings, TrackedFrame, Tracker};
 use std::collections::HashMap;
+
+/// A corrected frame's cell is the one the tracker knew under its track when its area is
+/// within this share of it and its centroid within this many pixels.
+pub const SAME_CELL: f64 = 0.01;
 
 /// What a tracker remembers of the frames before its next one, beyond their contours
 /// and tracks ([`Tracker::memory`]).
@@ -27,29 +31,30 @@ pub struct Memory {
 }
 
 impl Memory {
-    /// This memory for frame `old` as corrected into `new`: what it knew of a cell whose
-    /// outline the correction changed (or that it removed) is forgotten.
+    /// This memory for frame `old` as corrected into `new`: the frame the user corrected
+    /// is never revised, so no neck or sisters born apart are kept (a later frame would
+    /// date a division into it, or take one back there); a birth size only for a cell
+    /// the correction left as it was: its track the same (the cells new at the corrected
+    /// frame are numbered again) and its area and centroid within [`SAME_CELL`] (a run
+    /// opened for correction puts points on the outline's edges, which moves neither).
     pub fn corrected(&self, old: &TrackedFrame, new: &TrackedFrame) -> Memory {
-        let ring = |f: &TrackedFrame, k: u32| {
+        let cell = |f: &TrackedFrame, k: u32| {
             f.objects
                 .iter()
                 .find(|o| o.track == k)
-                .map(|o| o.ring.clone())
+                .map(|o| (o.area, o.centroid))
         };
-        let kept = |k: u32| ring(new, k).is_some_and(|r| Some(r) == ring(old, k));
+        let kept = |k: u32| match (cell(old, k), cell(new, k)) {
+            (Some((a, c)), Some((b, d))) => {
+                (a - b).abs() <= SAME_CELL * a && c.dist(d) <= SAME_CELL
+            }
+            _ => false,
+        };
         Memory {
-            apart: self
-                .apart
-                .iter()
-                .filter(|d| d.children.iter().all(|&c| kept(c)))
-                .copied()
-                .collect(),
-            necks: (self.necks.iter())
-                .filter(|(k, _)| kept(**k))
-                .map(|(k, v)| (*k, v.clone()))
-                .collect(),
+            apart: Vec::new(),
+            necks: HashMap::new(),
             born: (self.born.iter())
-                .filter(|(k, _)| new.objects.iter().any(|o| o.track == **k))
+                .filter(|(k, _)| kept(**k))
                 .map(|(k, v)| (*k, *v))
                 .collect(),
             ..self.clone()

@@ -129,17 +129,18 @@ fn colour(label: u32) -> [u8; 3] {
     PALETTE[(label as usize).wrapping_mul(5) % PALETTE.len()]
 }
 
-/// An overlay is drawn at least this many pixels on its longer side (the frame scaled up
-/// by a whole factor, at most [`OVERLAY_MAX_SCALE`]): at a movie's own size a label
-/// covers a small cell and runs into its neighbours' labels.
+/// An overlay is drawn this many pixels or more on its longer side where a whole factor
+/// up to [`OVERLAY_MAX_SCALE`] reaches it: at a movie's own size a label covers a small
+/// cell and runs into its neighbours' labels.
 pub const OVERLAY_SIDE: usize = 1024;
 
 /// The largest factor a frame is scaled up by for its overlay.
 pub const OVERLAY_MAX_SCALE: usize = 4;
 
-/// One tracked frame drawn over its image, scaled up by a whole factor (nearest pixel)
-/// to at least [`OVERLAY_SIDE`] on its longer side: each track's outline in its colour,
-/// its label on it. RGB bytes and their width and height.
+/// One tracked frame drawn over its image, scaled up by the whole factor (nearest pixel,
+/// at most [`OVERLAY_MAX_SCALE`]) that brings its longer side to [`OVERLAY_SIDE`] or
+/// more: each track's outline in its colour, its label on it. RGB bytes and their width
+/// and height.
 pub fn overlay_rgb(image: &Field, frame: &TrackedFrame) -> (Vec<u8>, usize, usize) {
     let (w, h) = (image.width, image.height);
     let k = OVERLAY_SIDE
