@@ -50,14 +50,18 @@ impl Memory {
             }
             _ => false,
         };
+        // Built field by field: cloning the whole memory would copy the necks' lobes only
+        // to drop them.
         Memory {
+            next_seeding: self.next_seeding,
+            residual: self.residual,
+            look_residual: self.look_residual,
             apart: Vec::new(),
             necks: HashMap::new(),
             born: (self.born.iter())
                 .filter(|(k, _)| kept(**k))
                 .map(|(k, v)| (*k, *v))
                 .collect(),
-            ..self.clone()
         }
     }
 }
