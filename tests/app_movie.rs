@@ -562,6 +562,10 @@ fn a_tracked_and_corrected_movie_saved_as_a_session_reopens_as_it_was() {
     assert!(close_window(&mut h), "saved");
     let text = std::fs::read_to_string(&path).unwrap();
     assert!(text.contains("\"format\":\"topocontour-tracking\""));
+    assert!(
+        !text.contains("unwanted"),
+        "no cell deleted: read as before"
+    );
     let mut again = harness(TopoApp::default());
     again
         .state_mut()
@@ -694,7 +698,7 @@ fn a_cell_deleted_ends_its_track_and_later_corrections_are_asked_about() {
 /// A cell deleted by hand changes nothing else: the frames after the correction are
 /// tracked again as the first run tracked them (the tracker resumes with what it
 /// remembered of the frame), the division of a rod elsewhere included. The deleted cell's
-/// track ends; the speck, still in the image, is found again later as a new cell.
+/// track ends, and the speck, still in the image, is not found again as a new cell.
 #[test]
 fn a_correction_leaves_the_cells_it_did_not_touch_as_they_were() {
     let rod = |a: f64, b: f64| (Point::new(a, 32.0), Point::new(b, 32.0), 6.0);
@@ -735,36 +739,58 @@ fn a_correction_leaves_the_cells_it_did_not_touch_as_they_were() {
         0,
         "the deleted cell's track ends"
     );
-    // The tracks started after the correction may be numbered otherwise (the speck found
-    // again takes a number first).
     let divisions = |t: &topocontour::app::Tracking| {
         t.divisions()
-            .map(|d| (d.frame, d.parent))
+            .map(|d| (d.frame, d.parent, d.children))
             .collect::<Vec<_>>()
     };
-    assert_eq!(divisions(&tr), [(4, 1)], "the rod divides as it did");
-    assert_eq!(divisions(&before), [(4, 1)]);
+    assert_eq!(
+        divisions(&tr),
+        divisions(&before),
+        "the rod divides as it did"
+    );
+    assert_eq!(divisions(&before)[0].0, 4);
+    let near_speck =
+        |o: &topocontour::track::TrackedObject| o.centroid.dist(Point::new(86.0, 9.0)) < 6.0;
     for t in 2..8 {
+        assert!(
+            before.frames[t].objects.iter().any(near_speck),
+            "frame {t}: the first run has the speck"
+        );
+        assert!(
+            !tr.frames[t].objects.iter().any(near_speck),
+            "frame {t}: the deleted speck is not found again"
+        );
         let rods = |f: &topocontour::track::TrackedFrame| {
-            let speck = far(f);
-            let mut cells = f
-                .objects
-                .iter()
-                .filter(|o| Some(o.track) != speck)
-                .map(|o| (o.area, o.centroid))
+            let mut cells = (f.objects.iter())
+                .filter(|o| !near_speck(o))
+                .map(|o| (o.track, o.area, o.centroid))
                 .collect::<Vec<_>>();
-            cells.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
+            cells.sort_by(|a, b| a.2.x.total_cmp(&b.2.x));
             cells
         };
         let (again, was) = (rods(&tr.frames[t]), rods(&before.frames[t]));
         assert_eq!(again.len(), was.len(), "frame {t}");
-        for ((a, c), (a0, c0)) in again.into_iter().zip(was) {
+        for ((k, a, c), (k0, a0, c0)) in again.into_iter().zip(was) {
+            assert_eq!(k, k0, "frame {t}: the same track");
             assert!(
                 (a - a0).abs() < 0.01 * a0 && c.dist(c0) < 0.2,
                 "frame {t}: {a} {a0} {c:?} {c0:?}"
             );
         }
     }
+    // Saved and opened again, the tracking still knows where the speck was deleted.
+    let path = save_session(&mut h, "untouched.session.json");
+    let mut again = harness(TopoApp::default());
+    (again.state_mut()).send(Command::OpenSession(path.to_path_buf()));
+    again.step();
+    again.step();
+    assert_no_error(&again);
+    let unwanted = |t: &topocontour::app::Tracking| {
+        (t.memory.get(&(t.frames.len() - 1))).map_or(Vec::new(), |m| m.unwanted().to_vec())
+    };
+    assert_eq!(unwanted(&tr).len(), 1);
+    assert_eq!(unwanted(&tracking(&again)), unwanted(&tr));
 }
 
 /// Dark cells in a bright halo tracked as a generic image: the tracking's summary says

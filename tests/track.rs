@@ -1022,7 +1022,7 @@ fn a_tracker_resumed_with_its_memory_goes_on_as_the_run_did() {
             r.set_previous(movie[t].clone());
             run_on(r, &movie[t + 1..])
         };
-        let memory = memories[t].corrected(&frames[t], &frames[t]);
+        let memory = memories[t].corrected(&frames[t], &frames[t], W, H);
         let (again, lineage) = resumed(Some(memory));
         let differs = again.iter().zip(&frames[t + 1..]).position(|(a, b)| a != b);
         assert_eq!(
@@ -1036,5 +1036,75 @@ fn a_tracker_resumed_with_its_memory_goes_on_as_the_run_did() {
     assert!(
         forgetful_differs,
         "the memory made no difference: the movie tests nothing"
+    );
+}
+
+/// A cell deleted by hand stays deleted: the tracker resumed after the correction takes
+/// no new cell where it was, though the image still shows it, and still finds a cell
+/// that appears elsewhere. Resumed with the same memory less the deletion, it finds the
+/// speck again at its next look (so the scene tells).
+#[test]
+fn a_cell_deleted_by_hand_is_not_found_again_and_new_cells_elsewhere_are() {
+    let speck = disk(76.0, 48.0, 4.0);
+    let movie: Vec<Field> = (0..10)
+        .map(|t| {
+            let mut cells = vec![disk(16.0 + t as f64, 20.0, 7.0), speck];
+            if t >= 6 {
+                cells.push(disk(48.0, 48.0, 6.0));
+            }
+            blurred(frame(&cells))
+        })
+        .collect();
+    let settings = TrackSettings::new(Params {
+        polarity: Polarity::Bright,
+        ..Params::default()
+    });
+    let mut tracker = Tracker::new(settings.clone(), Vec::new());
+    let mut frames = Vec::new();
+    for f in &movie[..3] {
+        frames.push(tracker.step(f).unwrap());
+    }
+    let near = |o: &topocontour::track::TrackedObject, x: f64, y: f64| {
+        o.centroid.dist(Point::new(x, y)) < 5.0
+    };
+    let old = frames[2].clone();
+    assert_eq!(old.objects.len(), 2, "the cell and the speck");
+    let mut new = old.clone();
+    new.objects.retain(|o| !near(o, 76.0, 48.0));
+    assert_eq!(new.objects.len(), 1);
+    let resumed = |memory| {
+        let mut r = Tracker::resume(
+            settings.clone(),
+            tracker.lineage().clone(),
+            &new,
+            W,
+            H,
+            Some(memory),
+        );
+        r.set_previous(movie[2].clone());
+        run_on(r, &movie[3..]).0
+    };
+    let memory = tracker.memory();
+    let after = resumed(memory.corrected(&old, &new, W, H));
+    assert_eq!(memory.corrected(&old, &new, W, H).unwanted().len(), 1);
+    for (t, f) in (3..).zip(&after) {
+        assert!(
+            !f.objects.iter().any(|o| near(o, 76.0, 48.0)),
+            "frame {t}: the deleted speck is not found again"
+        );
+        assert!(f.objects.iter().any(|o| near(o, 16.0 + t as f64, 20.0)));
+        assert_eq!(
+            f.objects.iter().any(|o| near(o, 48.0, 48.0)),
+            t >= 6,
+            "frame {t}: the cell appearing elsewhere is found"
+        );
+    }
+    // The same memory, the frame not seen as corrected: the speck comes back.
+    let forgetful = resumed(memory.corrected(&new, &new, W, H));
+    assert!(
+        forgetful
+            .iter()
+            .any(|f| f.objects.iter().any(|o| near(o, 76.0, 48.0))),
+        "without the deletion remembered the speck is found again"
     );
 }

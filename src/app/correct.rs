@@ -18,7 +18,9 @@
 use super::{Command, Question, Run, Tool, TopoApp};
 use crate::evolution::{regions, Evolver, Mode, Shape};
 use crate::geometry::Point;
-use crate::track::{carry::label_raster, Division, Lineage, TrackedFrame, TrackedObject, Tracker};
+use crate::track::{
+    carry::label_raster, Division, Lineage, Memory, TrackedFrame, TrackedObject, Tracker,
+};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -153,12 +155,15 @@ impl TopoApp {
         tr.id = super::movie::next_tracking_id();
         tr.frames.truncate(t);
         tr.frames.push(frame.clone());
-        // What the tracker knew after frame t, less what the correction makes unsure.
-        let memory = tr.memory.get(&t).map(|m| m.corrected(&old, &frame));
+        // What the tracker knew after frame t (nothing, for a tracking reopened from its
+        // session), less what the correction makes unsure, and where cells were deleted.
+        let memory = (tr
+            .memory
+            .get(&t)
+            .map_or_else(Memory::default, |m| Memory::clone(m)))
+        .corrected(&old, &frame, w, h);
         tr.memory.retain(|&k, _| k < t);
-        if let Some(m) = &memory {
-            tr.memory.insert(t, Arc::new(m.clone()));
-        }
+        tr.memory.insert(t, Arc::new(memory.clone()));
         tr.lineage = lineage.clone();
         tr.stopped = None;
         tr.corrected.retain(|&f| f < t);
@@ -168,7 +173,7 @@ impl TopoApp {
         let id = tr.id;
         match settings.filter(|_| t + 1 < len) {
             Some(s) => {
-                let tracker = Tracker::resume(s, lineage, &frame, w, h, memory);
+                let tracker = Tracker::resume(s, lineage, &frame, w, h, Some(memory));
                 self.spawn_tracking(tracker, t + 1, id);
                 self.status.notify(format!(
                     "frame {t} corrected ({summary}): frames {}–{} are tracked again from it",

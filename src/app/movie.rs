@@ -667,6 +667,8 @@ impl TopoApp {
             }),
             tracks: tr.map_or(Vec::new(), |t| t.lineage.tracks().to_vec()),
             corrected: tr.map_or(Vec::new(), |t| t.corrected.iter().copied().collect()),
+            unwanted: (tr.and_then(|t| t.memory.get(&t.frames.len().checked_sub(1)?)))
+                .map_or(Vec::new(), |m| m.unwanted().to_vec()),
         };
         let json = s.to_json(path).map_err(super::AppError::Movie)?;
         write_beside(&m.movie, path, json.into_bytes())
@@ -701,6 +703,15 @@ impl TopoApp {
             return;
         };
         if s.settings.is_some() {
+            // Where cells were deleted is saved as it lay after the last frame; it holds
+            // for the frames from the last correction on, every deletion made by then (a
+            // drifting stage's shift since aside).
+            let mut memory = HashMap::new();
+            if !s.unwanted.is_empty() {
+                let from = s.corrected.iter().max().copied().unwrap_or(0);
+                let m = Arc::new(Memory::with_unwanted(s.unwanted));
+                memory.extend((from..s.frames.len()).map(|t| (t, m.clone())));
+            }
             m.tracking = Some(Tracking {
                 id: next_tracking_id(),
                 complete: s.frames.len() == m.movie.len(),
@@ -710,7 +721,7 @@ impl TopoApp {
                 corrected: s.corrected.into_iter().collect(),
                 running: false,
                 stopped: None,
-                memory: HashMap::new(),
+                memory,
                 hint: None,
             });
         }

@@ -1,7 +1,8 @@
 //! Tracking sessions: a tracked movie saved from the app and opened again where it was —
 //! the movie (its path, relative to the session file as a still's image is, its frames
 //! and size), the frame-0 shapes and the tracking settings, every tracked frame's cells
-//! with their tracks, the lineage, and the frames corrected by hand.
+//! with their tracks, the lineage, the frames corrected by hand, and where cells were
+//! deleted by hand (no new cell is taken there when the tracking goes on).
 //!
 //! The result is stored, not re-run: opening is instant, and the corrections, which no
 //! re-run could make again, are kept as they were. A movie is not checksummed (a long
@@ -62,6 +63,11 @@ pub struct TrackingSession {
     pub tracks: Vec<Track>,
     /// The frames corrected by hand.
     pub corrected: Vec<usize>,
+    /// The outlines of the cells deleted by hand, where they lie after the last frame
+    /// tracked ([`crate::track::Memory::unwanted`]); left out when none, so a session
+    /// without deletions reads as before.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub unwanted: Vec<Vec<crate::geometry::Point>>,
 }
 
 /// What a tracking session holds once checked against its movie.
@@ -209,6 +215,9 @@ impl TrackingSession {
         }
         if let Some(c) = self.corrected.iter().find(|&&c| c >= self.frames.len()) {
             return Err(format!("frame {c} corrected but not tracked"));
+        }
+        if (self.unwanted.iter()).any(|r| r.len() < 3 || !r.iter().all(inside)) {
+            return Err("the outline of a deleted cell is not a ring inside the frame".into());
         }
         Ok(lineage)
     }

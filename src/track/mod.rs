@@ -81,7 +81,7 @@ pub use lineage::{Division, Lineage, Track};
 pub use resume::{Memory, SAME_CELL};
 
 use crate::evolution::{find_seeds, EvolveError, Evolver, Field, Mode, Params, Shape};
-use crate::geometry::{signed_area, Point};
+use crate::geometry::{fill_even_odd, signed_area, Point};
 use crate::image::{ImageModel, Modality};
 use crate::topology::TopologyEvent;
 use carry::{
@@ -406,6 +406,9 @@ pub struct Tracker {
     /// a tracker resumed after a correction knows those of the cells it left as they
     /// were ([`Memory::corrected`]).
     born: HashMap<u32, Size>,
+    /// The outlines of cells the user deleted ([`Memory::corrected`]), moved with the
+    /// field's drift: no new cell is taken where they lie.
+    unwanted: Vec<Vec<Point>>,
 }
 
 impl Tracker {
@@ -425,6 +428,7 @@ impl Tracker {
             apart: Vec::new(),
             necks: HashMap::new(),
             born: HashMap::new(),
+            unwanted: Vec::new(),
         }
     }
 
@@ -693,6 +697,11 @@ impl Tracker {
             }
         }
         self.labels = moved;
+        let d = Point::new(s.0 as f64, s.1 as f64);
+        self.unwanted.retain_mut(|ring| {
+            ring.iter_mut().for_each(|p| *p = *p + d);
+            inside(crate::geometry::area2_centroid(ring).1)
+        });
     }
 
     /// A frame's evolution `evolved` from the cells before (`origins`), run again with
@@ -708,7 +717,16 @@ impl Tracker {
         evolved: Evolved,
     ) -> Result<WithNew, EvolveError> {
         let (t, w, h) = (self.frame, image.width, image.height);
-        let found = labels_of(&evolved.0, w, h);
+        let mut found = labels_of(&evolved.0, w, h);
+        // Where the user deleted a cell counts as covered: no seed is taken there, and
+        // its area does not call for a look.
+        for ring in &self.unwanted {
+            fill_even_odd(std::slice::from_ref(ring), w, h, |i| {
+                if found[i] == 0 {
+                    found[i] = u32::MAX;
+                }
+            });
+        }
         let free = evolved.2.as_deref().map(|m| free_object(m, &found));
         let grown =
             free.is_none_or(|f| f as f64 > self.residual as f64 + self.settings.params.min_area);

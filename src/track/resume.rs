@@ -9,18 +9,31 @@
 //! neighbour's division lost), so the app keeps each frame's memory and a resumed tracker
 //! takes it back, less what a correction makes unsure ([`Memory::corrected`]): the
 //! corrected frame stays as the user left it.
+//!
+//! A cell the user deleted stays deleted: where it was is remembered as unwanted and no
+//! new cell is taken there in the frames after (a speck deleted at one frame was found
+//! again as a new cell at the next look). Carried cells may still grow over it. The
+//! place moves with the field's drift, not with the object: a deleted cell that swims
+//! away is found again where it went, as any cell entering the view would be.
 
 use super::neck::Neck;
 use super::{Division, Lineage, Size, TrackSettings, TrackedFrame, Tracker};
+use crate::geometry::{fill_even_odd, Point};
 use std::collections::HashMap;
 
 /// A corrected frame's cell is the one the tracker knew under its track when its area is
 /// within this share of it and its centroid within this many pixels.
 pub const SAME_CELL: f64 = 0.01;
 
+/// A cell of the frame before a correction is deleted when its track is gone and the
+/// corrected cells cover less than this share of its pixels (a merge or a redrawn
+/// outline covers most of it).
+pub const DELETED_COVER: f64 = 0.5;
+
 /// What a tracker remembers of the frames before its next one, beyond their contours
-/// and tracks ([`Tracker::memory`]).
-#[derive(Clone, Debug, Default)]
+/// and tracks ([`Tracker::memory`]). The default is what a new tracker knows: nothing,
+/// so it looks for new cells at once.
+#[derive(Clone, Debug)]
 pub struct Memory {
     next_seeding: usize,
     residual: usize,
@@ -28,6 +41,21 @@ pub struct Memory {
     apart: Vec<Division>,
     necks: HashMap<u32, (Neck, Option<f64>)>,
     born: HashMap<u32, Size>,
+    unwanted: Vec<Vec<Point>>,
+}
+
+impl Default for Memory {
+    fn default() -> Self {
+        Memory {
+            next_seeding: 0,
+            residual: 0,
+            look_residual: true,
+            apart: Vec::new(),
+            necks: HashMap::new(),
+            born: HashMap::new(),
+            unwanted: Vec::new(),
+        }
+    }
 }
 
 impl Memory {
@@ -37,7 +65,15 @@ impl Memory {
     /// the correction left as it was: its track the same (the cells new at the corrected
     /// frame are numbered again) and its area and centroid within [`SAME_CELL`] (a run
     /// opened for correction puts points on the outline's edges, which moves neither).
-    pub fn corrected(&self, old: &TrackedFrame, new: &TrackedFrame) -> Memory {
+    /// The outlines of the cells the correction deleted ([`DELETED_COVER`]) join the
+    /// places no new cell is taken (the frames are `width`×`height`).
+    pub fn corrected(
+        &self,
+        old: &TrackedFrame,
+        new: &TrackedFrame,
+        width: usize,
+        height: usize,
+    ) -> Memory {
         let cell = |f: &TrackedFrame, k: u32| {
             f.objects
                 .iter()
@@ -50,6 +86,20 @@ impl Memory {
             }
             _ => false,
         };
+        let covered = new.label_raster(width, height);
+        let deleted = old.objects.iter().filter(|o| {
+            if new.objects.iter().any(|n| n.track == o.track) {
+                return false;
+            }
+            let (mut all, mut under) = (0usize, 0usize);
+            fill_even_odd(std::slice::from_ref(&o.ring), width, height, |i| {
+                all += 1;
+                under += usize::from(covered[i] != 0);
+            });
+            all > 0 && (under as f64) < DELETED_COVER * all as f64
+        });
+        let mut unwanted = self.unwanted.clone();
+        unwanted.extend(deleted.map(|o| o.ring.clone()));
         // Built field by field: cloning the whole memory would copy the necks' lobes only
         // to drop them.
         Memory {
@@ -62,6 +112,21 @@ impl Memory {
                 .filter(|(k, _)| kept(**k))
                 .map(|(k, v)| (*k, *v))
                 .collect(),
+            unwanted,
+        }
+    }
+
+    /// Where the user deleted cells: no new cell is taken there.
+    pub fn unwanted(&self) -> &[Vec<Point>] {
+        &self.unwanted
+    }
+
+    /// What a new tracker knows, and where the user deleted cells (`unwanted`): the
+    /// memory of a tracking reopened from its session, which keeps no more.
+    pub fn with_unwanted(unwanted: Vec<Vec<Point>>) -> Memory {
+        Memory {
+            unwanted,
+            ..Memory::default()
         }
     }
 }
@@ -77,13 +142,14 @@ impl Tracker {
             apart: self.apart.clone(),
             necks: self.necks.clone(),
             born: self.born.clone(),
+            unwanted: self.unwanted.clone(),
         }
     }
 
     /// A tracker whose next frame is `last.frame + 1`, started from `last`'s cells, with
     /// the tracks so far `lineage`, on `width`×`height` frames, and what the tracker that
     /// tracked `last` remembered (`memory`; without it, new cells are looked for at once
-    /// and nothing is known of the cells' births and necks).
+    /// and nothing is known of the cells' births and necks, as [`Memory::default`]).
     pub fn resume(
         settings: TrackSettings,
         lineage: Lineage,
@@ -101,14 +167,14 @@ impl Tracker {
             .collect();
         t.labels = last.label_raster(width, height);
         t.frame = last.frame + 1;
-        if let Some(m) = memory {
-            t.next_seeding = m.next_seeding;
-            t.residual = m.residual;
-            t.look_residual = m.look_residual;
-            t.apart = m.apart;
-            t.necks = m.necks;
-            t.born = m.born;
-        }
+        let m = memory.unwrap_or_default();
+        t.next_seeding = m.next_seeding;
+        t.residual = m.residual;
+        t.look_residual = m.look_residual;
+        t.apart = m.apart;
+        t.necks = m.necks;
+        t.born = m.born;
+        t.unwanted = m.unwanted;
         t
     }
 }
