@@ -78,7 +78,7 @@ mod resume;
 pub mod side;
 
 pub use lineage::{Division, Lineage, Track};
-pub use resume::{Memory, SAME_CELL};
+pub use resume::{Memory, DELETED_COVER, SAME_CELL};
 
 use crate::evolution::{find_seeds, EvolveError, Evolver, Field, Mode, Params, Shape};
 use crate::geometry::{fill_even_odd, signed_area, Point};
