@@ -6,7 +6,8 @@
 //!   `segment --train`) painted, and either the probability map over the image, or the
 //!   contours the taught run produced from the map's seeds;
 //! - `app_shot movie MOVIE`: the movie tracked, then the first division's frame shown
-//!   with its mother selected in the lineage view.
+//!   with its mother selected in the lineage view;
+//! - `app_shot correct MOVIE`: the same frame opened for correction (the Edit tool).
 
 use topocontour::app::{Command, Tool, TopoApp, Training};
 use topocontour::evolution::Modality;
@@ -16,6 +17,8 @@ struct Shot {
     /// Track (from the window: its thread wakes the window), then jump to the first
     /// division once tracking has ended.
     jump: bool,
+    /// Then open the frame for correction.
+    edit: bool,
     asked: bool,
     drawn: bool,
 }
@@ -40,6 +43,9 @@ impl eframe::App for Shot {
         if let (true, true, true, Some(d)) = (self.jump, self.asked, done, first) {
             self.app.send(Command::SeekMovieFrame(d.frame));
             self.app.send(Command::SelectTrack(Some(d.parent)));
+            if self.edit {
+                self.app.send(Command::SetTool(Tool::Edit));
+            }
             self.jump = false;
         }
         self.app.ui(ui);
@@ -54,7 +60,7 @@ fn fail(why: String) -> ! {
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mut app = TopoApp::default();
-    let mut jump = false;
+    let (mut jump, mut edit) = (false, false);
     match args.iter().map(String::as_str).collect::<Vec<_>>()[..] {
         ["train", image, strokes, what] => {
             app.send(Command::OpenImage(image.into()));
@@ -89,7 +95,8 @@ fn main() {
                 app.apply();
             }
         }
-        ["movie", movie] => {
+        [kind @ ("movie" | "correct"), movie] => {
+            edit = kind == "correct";
             app.send(Command::OpenMovie(movie.into()));
             app.send(Command::SetPolarity(
                 topocontour::evolution::Polarity::Bright,
@@ -98,7 +105,8 @@ fn main() {
             jump = true;
         }
         _ => fail(
-            "usage: app_shot train IMAGE STROKES.png map|contours | app_shot movie MOVIE".into(),
+            "usage: app_shot train IMAGE STROKES.png map|contours | app_shot movie|correct MOVIE"
+                .into(),
         ),
     }
     let options = eframe::NativeOptions {
@@ -112,6 +120,7 @@ fn main() {
             Ok(Box::new(Shot {
                 app,
                 jump,
+                edit,
                 asked: false,
                 drawn: false,
             }))

@@ -824,3 +824,42 @@ fn a_haloed_movie_tracked_as_generic_suggests_phase_contrast() {
     let notice = h.state().status.notice.clone().unwrap_or_default();
     assert!(notice.contains("as in phase contrast"), "{notice}");
 }
+
+/// A tracked frame opened for correction names its cells by track, on the canvas and in
+/// the object table, as the tracked frame did (not by the run's contour ids); a join
+/// shows the track the joined cell continues.
+#[test]
+fn a_frame_being_corrected_shows_its_cells_by_track() {
+    let (mut h, _movie) = tracked_rod("by-track", 4);
+    click_label(&mut h, "Edit");
+    h.step();
+    h.step();
+    let cells = |h: &Harness<'static, TopoApp>| {
+        let mut c: Vec<(u32, Point)> = (h.state().correction_cells())
+            .expect("a correction on screen")
+            .into_values()
+            .collect();
+        c.sort_by_key(|v| v.0);
+        c.dedup_by_key(|v| v.0);
+        c
+    };
+    let tracked = tracking(&h).frames[4].clone();
+    let shown = cells(&h);
+    assert_eq!(shown.len(), 2, "{shown:?}");
+    for (k, c) in shown {
+        let o = tracked.objects.iter().find(|o| o.track == k).unwrap();
+        assert!(o.centroid.dist(c) < 0.5, "track {k} where it was tracked");
+    }
+    h.get_by_label_contains("2 cells in movie frame 4, being corrected");
+    click_label(&mut h, "Brush");
+    h.step();
+    drag(&mut h, Point::new(38.0, 32.0), Point::new(60.0, 32.0));
+    wait_for_tracking(&mut h);
+    let joined = cells(&h);
+    assert_eq!(
+        joined.iter().map(|v| v.0).collect::<Vec<_>>(),
+        [1],
+        "the mother goes on"
+    );
+    h.get_by_label_contains("1 cell in movie frame 4, being corrected");
+}

@@ -81,6 +81,13 @@ impl TopoApp {
         }
     }
 
+    /// The track each cell of the correction on screen keeps, and the cell's centroid, by
+    /// contour id, as the canvas and the object table show them; None when no correction
+    /// is on screen.
+    pub fn correction_cells(&self) -> Option<HashMap<u32, (u32, Point)>> {
+        correction_tracks(&self.doc, self.doc.shown_record()?)
+    }
+
     /// Whether a correction on screen is not in the tracking yet.
     pub(super) fn correction_waiting(&self) -> bool {
         let (Some(m), Some(run)) = (&self.doc.movie, &self.doc.run) else {
@@ -208,6 +215,75 @@ impl TopoApp {
             self.apply_now(Command::ContinueTrack);
         }
     }
+}
+
+/// Per contour id of a correction on screen: the track its cell would keep, and the
+/// cell's centroid.
+pub type CellTracks = HashMap<u32, (u32, Point)>;
+
+/// [`correction_tracks`] of the recording on screen, measured once per recording and
+/// tracking (the table and the canvas draw every frame).
+#[derive(Default)]
+pub struct CorrectionTracks(Option<((u64, u64), Arc<CellTracks>)>);
+
+impl CorrectionTracks {
+    /// The tracks of the correction on screen, if one is.
+    pub fn get(&mut self, doc: &super::Document) -> Option<Arc<CellTracks>> {
+        let rec = doc.shown_record()?;
+        let tracking = doc.movie.as_ref()?.tracking.as_ref()?.id;
+        let key = (rec.stamp, tracking);
+        if self.0.as_ref().is_none_or(|(k, _)| *k != key) {
+            self.0 = Some((key, Arc::new(correction_tracks(doc, rec)?)));
+        }
+        self.0.as_ref().map(|(_, t)| t.clone())
+    }
+}
+
+/// The tracks the cells of a correction on screen would keep were it put in now: by
+/// contour id of the frame record `rec` (holes under their cell's), for the cells the
+/// correction keeps (rings of at least the run's smallest area), as [`corrected`] gives
+/// them. So the correction view shows each cell in its track's colour and number, as
+/// the tracked frame did, and a cut or a join shows the tracks it makes. None when no
+/// correction is on screen.
+pub(super) fn correction_tracks(
+    doc: &super::Document,
+    rec: &super::FrameRecord,
+) -> Option<CellTracks> {
+    let m = doc.movie.as_ref()?;
+    let (t, _) = m.correcting?;
+    let tr = m.tracking.as_ref()?;
+    let old = tr.frames.get(t)?;
+    let min_area = doc.run.as_ref()?.evolver.params().min_area;
+    let (w, h) = m.movie.size();
+    let rings: Vec<(u32, bool, &[Point])> = (rec.rings.iter())
+        .map(|r| (r.id, r.hole, r.points.as_slice()))
+        .collect();
+    let outer = |id: u32| rec.rings.iter().find(|r| r.id == id && !r.hole);
+    let kept: Vec<(Vec<u32>, TrackedObject)> = crate::contours::measure::regions_of_rings(&rings)
+        .into_iter()
+        .filter_map(|r| {
+            let ring = &outer(r.id.0)?.points;
+            (crate::geometry::signed_area(ring).abs() >= min_area).then(|| {
+                let cell = TrackedObject {
+                    track: 0,
+                    ring: ring.clone(),
+                    area: r.area,
+                    centroid: r.centroid,
+                };
+                let ids = std::iter::once(r.id).chain(r.holes).map(|c| c.0);
+                (ids.collect(), cell)
+            })
+        })
+        .collect();
+    let cells = kept.iter().map(|(_, c)| c.clone()).collect();
+    let (frame, _) = corrected(old, &tr.lineage, cells, w, h);
+    let mut tracks = CellTracks::new();
+    for (ids, c) in &kept {
+        if let Some(o) = frame.objects.iter().find(|o| o.ring == c.ring) {
+            tracks.extend(ids.iter().map(|&id| (id, (o.track, c.centroid))));
+        }
+    }
+    Some(tracks)
 }
 
 /// What a correction changed, in words.

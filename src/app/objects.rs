@@ -54,8 +54,17 @@ pub(super) fn objects_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
                 return;
             };
             let rows = cx.view.objects.rows(rec);
-            let noun = if rows.len() == 1 { "object" } else { "objects" };
-            ui.label(format!("{} {noun} in frame {}", rows.len(), rec.index))
+            let tracks = cx.view.correction_tracks.get(cx.doc);
+            let correcting = cx.doc.movie.as_ref().and_then(|m| m.correcting);
+            let title = match (&tracks, correcting) {
+                (Some(t), Some((f, _))) => {
+                    let cells: std::collections::BTreeSet<u32> = t.values().map(|v| v.0).collect();
+                    let n = crate::cli::counted(cells.len(), "cell");
+                    format!("{n} in movie frame {f}, being corrected")
+                }
+                _ => format!("{} in frame {}", crate::cli::counted(rows.len(), "object"), rec.index),
+            };
+            ui.label(title)
                 .on_hover_text("regions of the frame on screen: area and perimeter in pixels, circularity 4πA/P² (1 for a disk)");
             let selected = cx.view.selected_contour;
             let scroll = cx.view.objects.scroll_to(selected);
@@ -67,7 +76,9 @@ pub(super) fn objects_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
                     egui::Grid::new("object table")
                         .striped(true)
                         .num_columns(5)
-                        .show(ui, |ui| clicked = rows_ui(ui, &rows, selected, scroll));
+                        .show(ui, |ui| {
+                            clicked = rows_ui(ui, &rows, selected, scroll, tracks.as_deref())
+                        });
                 });
             if let Some(id) = clicked {
                 cx.send(Command::SelectContour(id));
@@ -75,14 +86,18 @@ pub(super) fn objects_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
         });
 }
 
-/// The header and one row per region; the selection a click asks for.
+/// The header and one row per region; the selection a click asks for. With `tracks`
+/// (a tracked frame being corrected) a region is named by the track its cell would
+/// keep, as on the canvas; "–" for one too small to be kept.
 fn rows_ui(
     ui: &mut egui::Ui,
     rows: &[Region],
     selected: Option<u32>,
     scroll: bool,
+    tracks: Option<&super::correct::CellTracks>,
 ) -> Option<Option<u32>> {
-    for h in ["object", "area px²", "perimeter px", "circularity", "holes"] {
+    let first = if tracks.is_some() { "track" } else { "object" };
+    for h in [first, "area px²", "perimeter px", "circularity", "holes"] {
         ui.strong(h);
     }
     ui.end_row();
@@ -90,9 +105,16 @@ fn rows_ui(
     for r in rows {
         let id = r.id.0;
         let on = selected == Some(id);
-        let cell = ui
-            .selectable_label(on, format!("#{id}"))
-            .on_hover_text("select this contour on the canvas");
+        let name = match tracks.map(|t| t.get(&id)) {
+            None => format!("#{id}"),
+            Some(Some((k, _))) => k.to_string(),
+            Some(None) => "–".into(),
+        };
+        let hover = match tracks {
+            None => "select this contour on the canvas",
+            Some(_) => "select this cell on the canvas: the track it keeps when the correction goes into the tracking (– : smaller than the smallest cell, left out)",
+        };
+        let cell = ui.selectable_label(on, name).on_hover_text(hover);
         if on && scroll {
             cell.scroll_to_me(None);
         }

@@ -71,6 +71,8 @@ pub struct ViewState {
     pub(super) texture: Option<Texture>,
     /// The object table's rows, measured once per frame shown.
     pub(super) objects: objects::ObjectTable,
+    /// The tracks of a correction's cells, measured once per frame shown.
+    pub(super) correction_tracks: super::correct::CorrectionTracks,
     /// The window title last sent.
     pub(super) title: String,
     /// The track selected in the lineage view or the division log.

@@ -50,8 +50,16 @@ fn image_rect(view: View, image: &crate::evolution::Field) -> Rect {
     )
 }
 
-/// Draws rings as closed lines (holes thinner), each in its colour, shifted by `shift`.
-fn draw_rings(painter: &egui::Painter, view: View, rings: &[crate::app::RingView], shift: Vec2) {
+/// Draws rings as closed lines (holes thinner), each in its colour, shifted by `shift`;
+/// with `tracks` (a correction on screen), each cell in its track's colour, numbered.
+fn draw_rings(
+    painter: &egui::Painter,
+    view: View,
+    rings: &[crate::app::RingView],
+    shift: Vec2,
+    tracks: Option<&crate::app::correct::CellTracks>,
+) {
+    let font = egui::FontId::proportional(12.0);
     for ring in rings {
         let mut pts: Vec<Pos2> = ring
             .points
@@ -59,10 +67,22 @@ fn draw_rings(painter: &egui::Painter, view: View, rings: &[crate::app::RingView
             .map(|&p| view.to_screen(p) + shift)
             .collect();
         pts.push(pts[0]);
+        let track = tracks.and_then(|t| t.get(&ring.id));
+        let colour = ring_color(track.map_or(ring.id, |t| t.0));
         painter.add(egui::Shape::line(
             pts,
-            Stroke::new(if ring.hole { 1.5 } else { 2.0 }, ring_color(ring.id)),
+            Stroke::new(if ring.hole { 1.5 } else { 2.0 }, colour),
         ));
+        if let (Some(&(k, c)), false) = (track, ring.hole) {
+            let at = view.to_screen(c) + shift;
+            painter.text(
+                at,
+                egui::Align2::CENTER_CENTER,
+                k.to_string(),
+                font.clone(),
+                colour,
+            );
+        }
     }
 }
 
@@ -86,7 +106,7 @@ pub(super) fn compare_layer(
         Color32::WHITE,
     );
     if let Some(rec) = cx.doc.shown_record_b() {
-        draw_rings(&p2, view, &rec.rings, shift);
+        draw_rings(&p2, view, &rec.rings, shift, None);
     }
     let label = |p: &egui::Painter, at: Rect, text: String| {
         p.text(
@@ -151,7 +171,8 @@ pub(super) fn contours_layer(cx: &mut Ctx, painter: &egui::Painter, view: View) 
         pts.push(pts[0]);
         painter.add(egui::Shape::line(pts, Stroke::new(5.0, Color32::WHITE)));
     }
-    draw_rings(painter, view, &rec.rings, Vec2::ZERO);
+    let tracks = cx.view.correction_tracks.get(cx.doc);
+    draw_rings(painter, view, &rec.rings, Vec2::ZERO, tracks.as_deref());
 }
 
 /// Flashes the motion regions of this frame's events and of the few frames before it.
