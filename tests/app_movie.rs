@@ -863,3 +863,38 @@ fn a_frame_being_corrected_shows_its_cells_by_track() {
     );
     h.get_by_label_contains("1 cell in movie frame 4, being corrected");
 }
+
+/// On a frame open for correction the arrows still move through the movie, and the
+/// frame they reach opens for correction in turn (they once stepped the correction's
+/// run, which has no evolution, and said so).
+#[test]
+fn the_arrows_move_through_frames_being_corrected() {
+    let (mut h, _movie) = tracked_rod("arrows", 4);
+    click_label(&mut h, "Edit");
+    h.step();
+    h.step();
+    let correcting = |h: &Harness<'static, TopoApp>| {
+        (h.state().doc.movie.as_ref()).and_then(|m| m.correcting.map(|c| c.0))
+    };
+    assert_eq!(correcting(&h), Some(4));
+    h.key_press(egui::Key::ArrowRight);
+    h.step();
+    h.step();
+    assert_eq!(movie_frame(&h), 5);
+    assert_eq!(
+        correcting(&h),
+        Some(5),
+        "the next frame opens for correction"
+    );
+    h.key_press(egui::Key::ArrowLeft);
+    h.step();
+    h.key_press(egui::Key::ArrowLeft);
+    h.step();
+    h.step();
+    assert_eq!(movie_frame(&h), 3);
+    assert_eq!(correcting(&h), Some(3));
+    assert!(
+        tracking(&h).corrected.is_empty(),
+        "nothing corrected by moving"
+    );
+}

@@ -11,7 +11,7 @@ pub const SHORTCUTS: [(&str, &str); 15] = [
     ("E", "step to the next topology event"),
     (
         "on a tracked movie",
-        "Space plays its frames, the arrows move a frame, E goes to the next division",
+        "Space plays its frames, the arrows move a frame (one being corrected too), E goes to the next division",
     ),
     ("[ and ]", "brush smaller / larger"),
     (
@@ -92,14 +92,15 @@ fn frame_keys(cx: &mut Ctx, ui: &egui::Ui) {
     }
 }
 
-/// On a tracked movie (no frame open for correction) the frame keys move through the
-/// movie, not the evolution: ←/→ a frame, Space plays or pauses it, E the next division.
-/// Whether they did.
+/// On a tracked movie the frame keys move through the movie, not the evolution: ←/→ a
+/// frame, Space plays or pauses it, E the next division. So too on a frame open for
+/// correction (its run is the tracked contours, with no evolution to step): the next
+/// frame opens for correction in turn, as the slider does. Whether they did.
 fn movie_keys(cx: &mut Ctx, left: bool, right: bool, space: bool, event: bool) -> bool {
     let Some(m) = cx.doc.movie.as_ref() else {
         return false;
     };
-    let Some(tr) = m.tracking.as_ref().filter(|_| m.correcting.is_none()) else {
+    let Some(tr) = m.tracking.as_ref() else {
         return false;
     };
     let t = m.frame;
