@@ -156,3 +156,40 @@ fn a_stroke_that_closes_a_slit_makes_a_hole() {
     assert_eq!(ev.contours().contour_count(), 2, "outer ring and the hole");
     ev.contours().sanity_check().unwrap();
 }
+
+/// A brush down to 2 px cuts a bar wherever the stroke ends beyond it, and the cut is as
+/// wide as the brush. A 2 px brush once slipped between vertices, its cut turned inside
+/// out behind it and healed: the bar stayed whole for most stroke ends.
+#[test]
+fn a_narrow_brush_cuts_a_bar_as_wide_as_itself_wherever_the_stroke_ends() {
+    for r in [2.0, 3.0, 6.0] {
+        for k in 0..14 {
+            let end = 53.0 + 0.5 * k as f64;
+            let bar = Shape::Rect {
+                min: Point::new(20.0, 42.0),
+                max: Point::new(108.0, 54.0),
+            };
+            let mut ev = evolver(&[bar], Mode::Adaptive);
+            ev.brush(Point::new(64.0, 20.0), Point::new(64.0, end), r);
+            let set = ev.contours();
+            set.sanity_check().unwrap();
+            // Each piece's extent across the bar's middle (where the stroke ends, the
+            // disc's rim narrows the cut).
+            let mut pieces: Vec<(f64, f64)> = set
+                .contour_ids()
+                .map(|id| {
+                    let pts = set.ring_points(id).into_iter();
+                    let xs = pts.filter(|p| (44.0..=52.0).contains(&p.y)).map(|p| p.x);
+                    xs.fold((f64::MAX, f64::MIN), |(lo, hi), x| (lo.min(x), hi.max(x)))
+                })
+                .collect();
+            pieces.sort_by(|a, b| a.0.total_cmp(&b.0));
+            assert_eq!(pieces.len(), 2, "radius {r}, stroke to y {end}: {pieces:?}");
+            let (left, right) = (pieces[0].1, pieces[1].0);
+            assert!(
+                (left - (64.0 - r)).abs() < 0.5 && (right - (64.0 + r)).abs() < 0.5,
+                "radius {r}, stroke to y {end}: the cut runs {left}..{right}"
+            );
+        }
+    }
+}

@@ -175,21 +175,59 @@ impl<M: Motion> Explicit<M> {
         let step = 0.25 * self.set.max_edge();
         let grow = (radius / step).ceil().max(1.0) as usize;
         for k in 1..=grow {
-            self.brush_disc(from, radius * k as f64 / grow as f64, level, &mut events);
+            let r = radius * k as f64 / grow as f64;
+            self.brush_disc(from, from, r, level, &mut events);
         }
         let n = (from.dist(to) / step).ceil() as usize;
         for k in 1..=n {
+            let was = from.lerp(to, (k - 1) as f64 / n as f64);
             let c = from.lerp(to, k as f64 / n as f64);
-            self.brush_disc(c, radius, level, &mut events);
+            self.brush_disc(was, c, radius, level, &mut events);
         }
         events
     }
 
-    /// One placement of the brush: the vertices inside the disc pushed to its rim, then
-    /// the rings remeshed so the next placement finds vertices all along the rim.
-    fn brush_disc(&mut self, c: Point, radius: f64, level: usize, events: &mut Vec<TopologyEvent>) {
+    /// One placement of the brush, its centre moved from `was` to `c`: the vertices
+    /// inside the disc pushed to its rim along the ray from `was`, then the rings remeshed
+    /// so the next placement finds vertices all along the rim.
+    ///
+    /// Along the ray from the last centre, not from this one: a vertex the moving disc
+    /// meets was outside the last disc, so it goes on ahead of the brush. Pushed straight
+    /// away from this centre, a vertex that came to lie near it (a remeshed edge's new
+    /// midpoint across the tip of a narrow cut) could go either way, and a cut by a brush
+    /// narrower than about the edge bound (2 px) turned inside out behind it and healed.
+    /// An edge the disc cuts with both ends outside first gets a vertex where it comes
+    /// nearest the centre, so a narrow disc cannot slip between two vertices.
+    fn brush_disc(
+        &mut self,
+        was: Point,
+        c: Point,
+        radius: f64,
+        level: usize,
+        events: &mut Vec<TopologyEvent>,
+    ) {
         let (scale, d_min, d_max) = spacing(level);
         let mut near = Vec::new();
+        self.set.vertices_near(
+            &crate::geometry::Aabb { min: c, max: c }.expand(radius + self.set.max_edge()),
+            &mut near,
+        );
+        for &a in &near {
+            if !self.set.is_alive(a) {
+                continue;
+            }
+            let (pa, pb) = (self.set.position(a), self.set.position(self.set.next(a)));
+            let d = pb - pa;
+            if pa.dist(c) < radius || pb.dist(c) < radius || d.norm2() == 0.0 {
+                continue;
+            }
+            let t = ((c - pa).dot(d) / d.norm2()).clamp(0.0, 1.0);
+            if t > 0.0 && t < 1.0 && pa.lerp(pb, t).dist(c) < radius {
+                // Refused only where the edge is degenerate; the push then does without.
+                let _ = self.set.insert_vertex(a, t);
+            }
+        }
+        near.clear();
         self.set.vertices_near(
             &crate::geometry::Aabb { min: c, max: c }.expand(radius),
             &mut near,
@@ -203,11 +241,28 @@ impl<M: Motion> Explicit<M> {
             if d >= radius || d == 0.0 {
                 continue;
             }
-            let goal = self.bounds.clamp(c + (x - c) * (radius / d));
+            let goal = self
+                .bounds
+                .clamp(rim_along(was, x, c, radius).unwrap_or(c + (x - c) * (radius / d)));
             self.shortened(v, goal, scale, events);
         }
         super::remesh(&mut self.set, d_min, d_max, M::gap(scale), events);
     }
+}
+
+/// Where the ray from `o` through `x` leaves the disc of `radius` about `c` (`x` inside
+/// it), if `x` is not `o`.
+fn rim_along(o: Point, x: Point, c: Point, radius: f64) -> Option<Point> {
+    let len = x.dist(o);
+    if len < 1e-9 {
+        return None;
+    }
+    let u = (x - o) * (1.0 / len);
+    // |o + u s − c|² = r², the larger root.
+    let w = c - o;
+    let b = u.dot(w);
+    let disc = b * b - w.norm2() + radius * radius;
+    (disc >= 0.0).then(|| o + u * (b + disc.sqrt()))
 }
 
 /// The part of segment `a`–`b` inside `bounds` (Liang–Barsky), if any.
