@@ -1040,17 +1040,19 @@ fn a_tracker_resumed_with_its_memory_goes_on_as_the_run_did() {
 }
 
 /// A cell deleted by hand stays deleted: the tracker resumed after the correction takes
-/// no new cell where it was, though the image still shows it, and still finds a cell
-/// that appears elsewhere. Resumed with the same memory less the deletion, it finds the
-/// speck again at its next look (so the scene tells).
+/// no new cell where it is, though the image still shows it, as it moves on further than
+/// its own size, and still finds a cell that appears elsewhere. Resumed with the same
+/// memory less the deletion, it finds the cell again at its next look (so the scene
+/// tells).
 #[test]
 fn a_cell_deleted_by_hand_is_not_found_again_and_new_cells_elsewhere_are() {
-    let speck = disk(76.0, 48.0, 4.0);
+    let gone = |t: usize| Point::new(84.0 - 2.5 * t as f64, 40.0);
     let movie: Vec<Field> = (0..10)
         .map(|t| {
-            let mut cells = vec![disk(16.0 + t as f64, 20.0, 7.0), speck];
+            let g = gone(t);
+            let mut cells = vec![disk(16.0 + t as f64, 20.0, 7.0), disk(g.x, g.y, 5.0)];
             if t >= 6 {
-                cells.push(disk(48.0, 48.0, 6.0));
+                cells.push(disk(30.0, 50.0, 6.0));
             }
             blurred(frame(&cells))
         })
@@ -1068,9 +1070,9 @@ fn a_cell_deleted_by_hand_is_not_found_again_and_new_cells_elsewhere_are() {
         o.centroid.dist(Point::new(x, y)) < 5.0
     };
     let old = frames[2].clone();
-    assert_eq!(old.objects.len(), 2, "the cell and the speck");
+    assert_eq!(old.objects.len(), 2, "the two cells");
     let mut new = old.clone();
-    new.objects.retain(|o| !near(o, 76.0, 48.0));
+    new.objects.retain(|o| !near(o, gone(2).x, gone(2).y));
     assert_eq!(new.objects.len(), 1);
     let resumed = |memory| {
         let mut r = Tracker::resume(
@@ -1089,22 +1091,128 @@ fn a_cell_deleted_by_hand_is_not_found_again_and_new_cells_elsewhere_are() {
     assert_eq!(memory.corrected(&old, &new, W, H).unwanted().len(), 1);
     for (t, f) in (3..).zip(&after) {
         assert!(
-            !f.objects.iter().any(|o| near(o, 76.0, 48.0)),
-            "frame {t}: the deleted speck is not found again"
+            !f.objects.iter().any(|o| o.centroid.dist(gone(t)) < 8.0),
+            "frame {t}: the deleted cell is not found again"
         );
         assert!(f.objects.iter().any(|o| near(o, 16.0 + t as f64, 20.0)));
         assert_eq!(
-            f.objects.iter().any(|o| near(o, 48.0, 48.0)),
+            f.objects.iter().any(|o| near(o, 30.0, 50.0)),
             t >= 6,
             "frame {t}: the cell appearing elsewhere is found"
         );
+        assert_eq!(f.objects.len(), 1 + usize::from(t >= 6), "frame {t}");
     }
-    // The same memory, the frame not seen as corrected: the speck comes back.
+    // The same memory, the frame not seen as corrected: the cell comes back.
     let forgetful = resumed(memory.corrected(&new, &new, W, H));
     assert!(
-        forgetful
-            .iter()
-            .any(|f| f.objects.iter().any(|o| near(o, 76.0, 48.0))),
-        "without the deletion remembered the speck is found again"
+        (3..)
+            .zip(&forgetful)
+            .any(|(t, f)| f.objects.iter().any(|o| near(o, gone(t).x, gone(t).y))),
+        "without the deletion remembered the cell is found again"
     );
+}
+
+/// A deleted cell that divides later stays deleted, both its daughters too (the one
+/// pushed apart from where the mother was included), and the cells around go on.
+#[test]
+fn a_deleted_cell_that_divides_stays_deleted_with_its_daughters() {
+    let movie = eventful();
+    let settings = TrackSettings::new(Params {
+        polarity: Polarity::Bright,
+        ..Params::default()
+    });
+    let mut tracker = Tracker::new(settings.clone(), Vec::new());
+    let mut frames = Vec::new();
+    for f in &movie[..4] {
+        frames.push(tracker.step(f).unwrap());
+    }
+    let (first, _) = run_on(tracker.clone(), &movie[4..]);
+    // The rod about (48, 40), dividing at frame 6 into sisters pushed apart.
+    let old = frames[3].clone();
+    let rod = |o: &topocontour::track::TrackedObject| (o.centroid.y - 40.0).abs() < 6.0;
+    assert_eq!(old.objects.iter().filter(|o| rod(o)).count(), 1);
+    let mut new = old.clone();
+    new.objects.retain(|o| !rod(o));
+    let mut r = Tracker::resume(
+        settings.clone(),
+        tracker.lineage().clone(),
+        &new,
+        W,
+        H,
+        Some(tracker.memory().corrected(&old, &new, W, H)),
+    );
+    r.set_previous(movie[3].clone());
+    let (after, lineage) = run_on(r, &movie[4..]);
+    for ((t, f), was) in (4..).zip(&after).zip(&first) {
+        assert!(
+            !f.objects.iter().any(rod),
+            "frame {t}: nothing of the deleted rod is found again: {:?}",
+            f.objects.iter().map(|o| o.centroid).collect::<Vec<_>>()
+        );
+        assert!(
+            was.objects.iter().any(rod),
+            "frame {t}: the first run has it"
+        );
+        // The cells around as the first run found them.
+        let others = |f: &TrackedFrame| {
+            let mut c: Vec<_> = f
+                .objects
+                .iter()
+                .filter(|o| !rod(o))
+                .map(|o| o.centroid)
+                .collect();
+            c.sort_by(|a, b| a.x.total_cmp(&b.x));
+            c
+        };
+        let (a, b) = (others(f), others(was));
+        assert_eq!(a.len(), b.len(), "frame {t}");
+        assert!(
+            a.iter().zip(&b).all(|(p, q)| p.dist(*q) < 0.5),
+            "frame {t}: {a:?} {b:?}"
+        );
+    }
+    assert_eq!(
+        lineage.lines().count(),
+        4,
+        "two disks and the disk entering: {lineage}"
+    );
+}
+
+/// A deleted nucleus whose daughters are pushed apart between two frames stays deleted:
+/// they are taken as its own, as its daughters would have been, not as new cells.
+#[test]
+fn a_deleted_nucleus_whose_daughters_are_pushed_apart_stays_deleted() {
+    let movie = mitosis(6.0, 16.0);
+    let settings = TrackSettings::new(Params {
+        polarity: Polarity::Bright,
+        modality: Modality::Fluorescence,
+        ..Params::default()
+    });
+    let mut tracker = Tracker::new(settings.clone(), Vec::new());
+    let mut frames = Vec::new();
+    for f in &movie[..2] {
+        frames.push(tracker.step(f).unwrap());
+    }
+    let old = frames[1].clone();
+    let nucleus = |o: &topocontour::track::TrackedObject| o.centroid.x < 70.0;
+    let mut new = old.clone();
+    new.objects.retain(|o| !nucleus(o));
+    assert_eq!(new.objects.len(), 1);
+    let mut r = Tracker::resume(
+        settings,
+        tracker.lineage().clone(),
+        &new,
+        W,
+        H,
+        Some(tracker.memory().corrected(&old, &new, W, H)),
+    );
+    r.set_previous(movie[1].clone());
+    let (after, _) = run_on(r, &movie[2..]);
+    for (t, f) in (2..).zip(&after) {
+        let left: Vec<_> = f.objects.iter().map(|o| o.centroid).collect();
+        assert!(
+            f.objects.len() == 1 && !nucleus(&f.objects[0]),
+            "frame {t}: only the other nucleus: {left:?}"
+        );
+    }
 }

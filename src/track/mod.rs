@@ -368,6 +368,15 @@ pub fn revise_labels(labels: &mut [u32], width: usize, next: &TrackedFrame) {
     }
 }
 
+/// A cell the user deleted as it was the frame before ([`Tracker::with_new_cells`]):
+/// its outline, centroid and area, and the area its pieces kept in this frame.
+struct Ghost {
+    ring: Vec<Point>,
+    centroid: Point,
+    area: f64,
+    kept: f64,
+}
+
 /// What one evolution of a frame gave: per shape, its pieces (largest first); the
 /// frames it ran; the image model it read (`None` when nothing was evolved).
 type Evolved = (Vec<Vec<TrackedObject>>, usize, Option<Arc<ImageModel>>);
@@ -406,8 +415,8 @@ pub struct Tracker {
     /// a tracker resumed after a correction knows those of the cells it left as they
     /// were ([`Memory::corrected`]).
     born: HashMap<u32, Size>,
-    /// The outlines of cells the user deleted ([`Memory::corrected`]), moved with the
-    /// field's drift: no new cell is taken where they lie.
+    /// The outlines of cells the user deleted ([`Memory::corrected`]), evolved every
+    /// frame as the cells are: no new cell is taken where they lie.
     unwanted: Vec<Vec<Point>>,
 }
 
@@ -498,10 +507,32 @@ impl Tracker {
                 shapes.extend(seeds);
             }
         }
-        let evolved = self.evolve(image, &shapes)?;
+        // Where the user deleted cells evolves with the cells, as cells would (it follows
+        // the cell it was, divides with it, keeps its neighbours off it), then is taken
+        // out: no seed is placed there ([`Tracker::with_new_cells`]), nothing is output.
+        let cells = shapes.len();
+        for ring in &self.unwanted {
+            shapes.push(shrunk(ring, self.settings.shrink));
+        }
+        let mut evolved = self.evolve(image, &shapes)?;
+        let mut ghosts_before = Vec::new();
+        if evolved.0.len() > cells {
+            let ghosts = evolved.0.split_off(cells);
+            for (ring, pieces) in self.unwanted.iter().zip(&ghosts) {
+                let (a2, c) = crate::geometry::area2_centroid(ring);
+                let kept: f64 = pieces.iter().map(|o| o.area).sum();
+                ghosts_before.push(Ghost {
+                    ring: ring.clone(),
+                    centroid: c,
+                    area: 0.5 * a2.abs(),
+                    kept,
+                });
+            }
+            self.unwanted = ghosts.into_iter().flatten().map(|o| o.ring).collect();
+        }
         let model = evolved.2.clone();
         let (origins, mut pieces, evolution_frames) = if t > 0 && self.settings.new_cells {
-            self.with_new_cells(image, origins, evolved)?
+            self.with_new_cells(image, origins, evolved, &ghosts_before)?
         } else {
             if t == 0 {
                 self.residual = leftover(&evolved, w, h);
@@ -710,23 +741,19 @@ impl Tracker {
     /// covers, when that area grew by the smallest cell kept since the first frame after
     /// the last look, or when no cell is left. Returns the origins, the pieces per origin
     /// and the frames evolved.
+    /// A seed mostly where a cell the user deleted was the frame before
+    /// (`ghosts_before`), or near one whose contour vanished or shrank as a dividing
+    /// cell's does ([`ADOPT_REACH`], [`ADOPT_KEPT`], as [`Tracker::adopt`] takes
+    /// daughters pushed apart), is the deleted cell's own and evolves as deleted too.
     fn with_new_cells(
         &mut self,
         image: &Field,
         origins: Vec<Origin>,
         evolved: Evolved,
+        ghosts_before: &[Ghost],
     ) -> Result<WithNew, EvolveError> {
         let (t, w, h) = (self.frame, image.width, image.height);
-        let mut found = labels_of(&evolved.0, w, h);
-        // Where the user deleted a cell counts as covered: no seed is taken there, and
-        // its area does not call for a look.
-        for ring in &self.unwanted {
-            fill_even_odd(std::slice::from_ref(ring), w, h, |i| {
-                if found[i] == 0 {
-                    found[i] = u32::MAX;
-                }
-            });
-        }
+        let found = self.covered(&evolved.0, w, h);
         let free = evolved.2.as_deref().map(|m| free_object(m, &found));
         let grown =
             free.is_none_or(|f| f as f64 > self.residual as f64 + self.settings.params.min_area);
@@ -746,8 +773,23 @@ impl Tracker {
         }
         self.next_seeding = t + self.settings.seed_every.max(1);
         self.look_residual = true;
-        let seeds = self.new_seeds(image, &found);
-        if seeds.is_empty() {
+        let mut seeds = self.new_seeds(image, &found);
+        let mut ghost_seeds = Vec::new();
+        if !ghosts_before.is_empty() {
+            let rings: Vec<(u32, &[Point])> = (ghosts_before.iter())
+                .map(|g| (1, g.ring.as_slice()))
+                .collect();
+            let before = label_raster(&rings, w, h);
+            let ghost = |s: &Shape| {
+                majority(s, &before, w, h) == 1
+                    || ghosts_before.iter().any(|g| {
+                        let reach = ADOPT_REACH * (g.area / std::f64::consts::PI).sqrt();
+                        g.kept <= ADOPT_KEPT * g.area && s.center().dist(g.centroid) <= reach
+                    })
+            };
+            (ghost_seeds, seeds) = seeds.into_iter().partition(|(s, _)| ghost(s));
+        }
+        if seeds.is_empty() && ghost_seeds.is_empty() {
             self.residual = free.unwrap_or(0);
             return Ok((origins, evolved.0, evolved.1));
         }
@@ -758,10 +800,34 @@ impl Tracker {
             shapes.push(s);
             all.push(o);
         }
-        let again = self.evolve(image, &shapes)?;
-        self.residual = leftover(&again, w, h);
+        // Where the user deleted cells evolves again with them too: without it, a
+        // neighbour's contour grew over a deleted nucleus and took it as a daughter.
+        let cells = shapes.len();
+        shapes.extend(self.unwanted.iter().map(|r| Shape::Polygon(r.clone())));
+        shapes.extend(ghost_seeds.into_iter().map(|(s, _)| s));
+        let mut again = self.evolve(image, &shapes)?;
+        if again.0.len() > cells {
+            let ghosts = again.0.split_off(cells);
+            self.unwanted = ghosts.into_iter().flatten().map(|o| o.ring).collect();
+        }
+        self.residual =
+            (again.2.as_deref()).map_or(0, |m| free_object(m, &self.covered(&again.0, w, h)));
         let (all, pieces) = regroup(all, again.0, self.shred_share());
         Ok((all, pieces, evolved.1 + again.1))
+    }
+
+    /// The label raster of `pieces` on a `w`×`h` frame, where the user deleted cells
+    /// counting as covered: no seed is taken there, and its area calls for no look.
+    fn covered(&self, pieces: &[Vec<TrackedObject>], w: usize, h: usize) -> Vec<u32> {
+        let mut found = labels_of(pieces, w, h);
+        for ring in &self.unwanted {
+            fill_even_odd(std::slice::from_ref(ring), w, h, |i| {
+                if found[i] == 0 {
+                    found[i] = u32::MAX;
+                }
+            });
+        }
+        found
     }
 
     /// The frame's automatic seeds that no cell of this frame (`found`) covers, each with

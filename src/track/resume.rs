@@ -10,11 +10,12 @@
 //! takes it back, less what a correction makes unsure ([`Memory::corrected`]): the
 //! corrected frame stays as the user left it.
 //!
-//! A cell the user deleted stays deleted: where it was is remembered as unwanted and no
-//! new cell is taken there in the frames after (a speck deleted at one frame was found
-//! again as a new cell at the next look). Carried cells may still grow over it. The
-//! place moves with the field's drift, not with the object: a deleted cell that swims
-//! away is found again where it went, as any cell entering the view would be.
+//! A cell the user deleted stays deleted: its outline is remembered as unwanted, and in
+//! the frames after it is carried and evolved as the cells are, then taken out of the
+//! frame: no new cell is taken where it lies (a speck deleted at one frame was found
+//! again as a new cell at the next look). So it follows the cell it was as that cell
+//! moves and divides (a place that only followed the stage's drift let a nucleus deleted
+//! at frame 10 come back when it divided at frame 36, beside where it was deleted).
 
 use super::neck::Neck;
 use super::{Division, Lineage, Size, TrackSettings, TrackedFrame, Tracker};
