@@ -898,3 +898,52 @@ fn the_arrows_move_through_frames_being_corrected() {
         "nothing corrected by moving"
     );
 }
+
+/// A frame opened for correction where a rod divided into a short and a long daughter
+/// and a cell appeared: each keeps the number it was tracked with (they were numbered
+/// again, the larger daughter first, so the preview and a correction there swapped the
+/// daughters).
+#[test]
+fn a_corrected_frame_keeps_the_numbers_of_the_tracks_it_began() {
+    let rod = |a: f64, b: f64| (Point::new(a, 32.0), Point::new(b, 32.0), 6.0);
+    let disk = |x: f64, y: f64| (Point::new(x, y), Point::new(x, y), 6.0);
+    let mut frames: Vec<_> = [10.0, 12.0, 14.0, 16.0]
+        .map(|h| frame(96, 64, &[rod(52.0 - h, 52.0 + h)]))
+        .into();
+    for gap in [3.0, 4.0, 5.0, 6.0] {
+        let cells = [
+            rod(36.0, 48.0 - gap),
+            rod(56.0 + gap, 70.0),
+            disk(12.0, 12.0),
+        ];
+        frames.push(frame(96, 64, &cells));
+    }
+    let (mut h, _movie) = tracked_movie("numbers", &frames);
+    let tr = tracking(&h);
+    let t = tr.divisions().next().expect("the rod divides").frame;
+    let born: Vec<(u32, u32)> = (tr.lineage.tracks().iter())
+        .filter(|k| k.first == t)
+        .map(|k| (k.label, k.parent))
+        .collect();
+    assert_eq!(
+        born.len(),
+        3,
+        "two daughters and a new cell: {}",
+        tr.lineage.ctc_text()
+    );
+    h.state_mut().send(Command::SeekMovieFrame(t));
+    h.step();
+    click_label(&mut h, "Edit");
+    h.step();
+    h.step();
+    let shown = h
+        .state()
+        .correction_cells()
+        .expect("a correction on screen");
+    for o in &tr.frames[t].objects {
+        let k = (shown.values())
+            .find(|(_, c)| c.dist(o.centroid) < 1.0)
+            .map(|v| v.0);
+        assert_eq!(k, Some(o.track), "the cell tracked as {}", o.track);
+    }
+}

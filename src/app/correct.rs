@@ -9,7 +9,10 @@
 //! the mother (the wrong split undone); one cell per track continues it; two or more
 //! cells of one track are a division there (the two largest its daughters); a cell over
 //! no tracked cell starts a track. Tracks that no corrected cell continues end the frame
-//! before (a merge forced: the larger overlap keeps its track).
+//! before (a merge forced: the larger overlap keeps its track). A cell that begins a
+//! track keeps the number of the track it covers most when that one began at this frame
+//! of the same parent: the daughters and new cells a correction left alone keep their
+//! numbers (numbered again by size and place, two daughters of like size swapped).
 //!
 //! Nothing the user did is lost without asking: tracking the frames after frame t again
 //! replaces any correction on them, so that is asked first ([`super::Question`]); each
@@ -344,14 +347,18 @@ pub fn corrected(
             *overlap.entry((n, o)).or_default() += 1;
         }
     }
-    // The track each cell continues: the one it covers most, a daughter born at t
-    // standing for its mother.
-    let base = |k: usize| -> Option<u32> {
-        let owner = overlap
+    // The tracked cell each cell covers most.
+    let covers = |k: usize| -> Option<u32> {
+        overlap
             .iter()
             .filter(|((n, _), _)| *n == k as u32 + 1)
             .max_by_key(|((_, o), c)| (**c, std::cmp::Reverse(*o)))
-            .map(|((_, o), _)| *o)?;
+            .map(|((_, o), _)| *o)
+    };
+    // The track each cell continues: the one it covers most, a daughter born at t
+    // standing for its mother.
+    let base = |k: usize| -> Option<u32> {
+        let owner = covers(k)?;
         let tr = lineage.get(owner)?;
         if tr.first < t {
             Some(owner)
@@ -375,7 +382,11 @@ pub fn corrected(
         earlier: Vec::new(),
         evolution_frames: old.evolution_frames,
     };
+    // Each cell's parent when it begins a track here (0: a new cell), or the track it
+    // continues.
+    let mut begins: Vec<Option<u32>> = vec![None; cells.len()];
     let mut label_of = vec![0u32; cells.len()];
+    let mut divided: Vec<(u32, [usize; 2])> = Vec::new();
     for (b, mut members) in groups {
         match (b, members.len()) {
             (Some(p), 1) => {
@@ -384,22 +395,56 @@ pub fn corrected(
             }
             (Some(p), _) => {
                 members.sort_by(|&a, &b| cells[b].area.total_cmp(&cells[a].area));
-                let children = [new.start(t, p), new.start(t, p)];
-                frame.divisions.push(Division {
-                    frame: t,
-                    parent: p,
-                    children,
-                });
-                for (i, &k) in members.iter().enumerate() {
-                    label_of[k] = children.get(i).copied().unwrap_or_else(|| new.start(t, 0));
+                divided.push((p, [members[0], members[1]]));
+                begins[members[0]] = Some(p);
+                begins[members[1]] = Some(p);
+                for &k in &members[2..] {
+                    begins[k] = Some(0);
                 }
             }
             (None, _) => {
                 for &k in &members {
-                    label_of[k] = new.start(t, 0);
+                    begins[k] = Some(0);
                 }
             }
         }
+    }
+    // A cell that begins a track keeps the number of the track it covers most when that
+    // track began here of the same parent (the larger cell, should two cover one): the
+    // cells a correction left as they were keep their numbers, as the canvas showed them.
+    let mut kept: Vec<(u32, usize)> = Vec::new();
+    for k in 0..cells.len() {
+        let Some(parent) = begins[k] else { continue };
+        let Some(own) = covers(k) else { continue };
+        if lineage
+            .get(own)
+            .is_some_and(|tr| tr.first == t && tr.parent == parent)
+        {
+            match kept.iter_mut().find(|(l, _)| *l == own) {
+                Some(e) if cells[e.1].area < cells[k].area => e.1 = k,
+                Some(_) => {}
+                None => kept.push((own, k)),
+            }
+        }
+    }
+    kept.sort_unstable();
+    for &(label, k) in &kept {
+        label_of[k] = new.start_as(label, t, begins[k].unwrap_or(0));
+    }
+    // The others in the groups' order, numbered on (cells left to right).
+    for k in 0..cells.len() {
+        if let (Some(parent), 0) = (begins[k], label_of[k]) {
+            label_of[k] = new.start(t, parent);
+        }
+    }
+    for (p, [a, b]) in divided {
+        let mut children = [label_of[a], label_of[b]];
+        children.sort_unstable();
+        frame.divisions.push(Division {
+            frame: t,
+            parent: p,
+            children,
+        });
     }
     for (mut c, label) in cells.into_iter().zip(label_of) {
         c.track = label;

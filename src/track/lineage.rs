@@ -59,6 +59,17 @@ impl Lineage {
         label
     }
 
+    /// A new track starting at `frame` labelled `label`, when no later label was given
+    /// (a corrected frame keeping the numbers of the tracks it began); else the next
+    /// label ([`Lineage::start`]). Returns its label.
+    pub fn start_as(&mut self, label: u32, frame: usize, parent: u32) -> u32 {
+        if label <= self.given {
+            return self.start(frame, parent);
+        }
+        self.given = label - 1;
+        self.start(frame, parent)
+    }
+
     /// Track `label` is seen in `frame`.
     pub fn extend(&mut self, label: u32, frame: usize) {
         if let Some(k) = self.index(label) {

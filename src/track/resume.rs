@@ -63,8 +63,8 @@ impl Memory {
     /// This memory for frame `old` as corrected into `new`: the frame the user corrected
     /// is never revised, so no neck or sisters born apart are kept (a later frame would
     /// date a division into it, or take one back there); a birth size only for a cell
-    /// the correction left as it was: its track the same (the cells new at the corrected
-    /// frame are numbered again) and its area and centroid within [`SAME_CELL`] (a run
+    /// the correction left as it was: its track the same and its area and centroid
+    /// within [`SAME_CELL`] (a run
     /// opened for correction puts points on the outline's edges, which moves neither).
     /// The outlines of the cells the correction deleted ([`DELETED_COVER`]) join the
     /// places no new cell is taken (the frames are `width`×`height`).
