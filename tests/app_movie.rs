@@ -947,3 +947,33 @@ fn a_corrected_frame_keeps_the_numbers_of_the_tracks_it_began() {
         assert_eq!(k, Some(o.track), "the cell tracked as {}", o.track);
     }
 }
+
+/// A movie of bright cells on a dark background opens with Bright objects and says so
+/// (tracked as dark objects, a fluorescence movie gave its background); one of dark
+/// cells on a lighter ground opens with Dark objects.
+#[test]
+fn a_movie_opens_with_the_polarity_its_first_frame_shows() {
+    let dir = movie_folder("bright-first", &dividing_rod());
+    let mut h = harness(TopoApp::default());
+    (h.state_mut()).send(Command::OpenMovie(dir.to_path_buf()));
+    h.step();
+    assert_no_error(&h);
+    assert_eq!(h.state().doc.params().polarity, Polarity::Bright);
+    let notice = h.state().status.notice.clone().unwrap_or_default();
+    assert!(
+        notice.contains("bright cells on a dark background, so Bright objects"),
+        "{notice}"
+    );
+    let inverted: Vec<_> = dividing_rod()
+        .into_iter()
+        .map(|mut f| {
+            image::imageops::invert(&mut f);
+            f
+        })
+        .collect();
+    let dir = movie_folder("dark-first", &inverted);
+    (h.state_mut()).send(Command::OpenMovie(dir.to_path_buf()));
+    h.step();
+    assert_no_error(&h);
+    assert_eq!(h.state().doc.params().polarity, Polarity::Dark);
+}

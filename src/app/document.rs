@@ -90,10 +90,15 @@ impl Document {
     pub fn of_image(field: Field, name: String) -> Self {
         // Each image opens with its own contrast window: 16-bit data that fills 12 bits
         // would otherwise open black.
-        let settings = Settings {
+        let mut settings = Settings {
             contrast: super::auto_contrast(&field),
             ..Settings::default()
         };
+        // Mostly dark background: the cells are the bright objects (a fluorescence movie
+        // tracked as dark objects tracked its background).
+        if crate::image::modality::looks_bright_on_dark(&field) {
+            settings.params.polarity = crate::evolution::Polarity::Bright;
+        }
         Document {
             image: Some(Arc::new(field)),
             image_name: name,

@@ -76,12 +76,17 @@ impl TopoApp {
                 doc.stack.pages = info.pages;
                 doc.stack.pixel = info.pixel_size;
                 self.status.error = None;
+                let bright = doc.params().polarity == crate::evolution::Polarity::Bright;
                 self.status.notice = (info.pages > 1).then(|| {
                     format!(
                         "{} holds {} pages: page 1 is shown (choose another under Image; a time-lapse opens as a movie with Movie > Open movie)",
                         doc.image_name, info.pages
                     )
                 });
+                if bright && info.pages == 1 {
+                    self.status.notice =
+                        Some(format!("{}{}", doc.image_name, super::movie::BRIGHT_CHOSEN));
+                }
                 self.doc = doc;
                 self.view.selected = None;
                 self.view.selected_contour = None;

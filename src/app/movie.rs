@@ -111,6 +111,10 @@ enum Message {
     Stopped(Box<Tracker>),
 }
 
+/// Said when an image or movie opens with Bright objects chosen for it.
+pub(super) const BRIGHT_CHOSEN: &str =
+    " — bright cells on a dark background, so Bright objects (the tool bar changes it)";
+
 /// Frames kept in memory for the slider, at most (about 0.5 GB of 512² frames): beyond,
 /// a frame is read again from the movie when shown.
 const CACHED_FRAMES: usize = 500;
@@ -244,9 +248,11 @@ impl TopoApp {
         let name = crate::io::folder::file_name(path);
         let mut doc = Document::of_image((*first).clone(), name.clone());
         doc.image = Some(first);
+        let bright = doc.params().polarity == crate::evolution::Polarity::Bright;
         self.status.notify(format!(
-            "{name}: {} frames; draw seeds on frame 0 (or none: automatic seeds), then Track",
-            movie.len()
+            "{name}: {} frames{}; draw seeds on frame 0 (or none: automatic seeds), then Track",
+            movie.len(),
+            if bright { BRIGHT_CHOSEN } else { "" }
         ));
         doc.movie = Some(MovieDoc {
             movie,

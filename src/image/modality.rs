@@ -68,6 +68,33 @@ pub const HALO_BAND: f32 = 3.0;
 /// Background lies at least this far (pixels) from every cell.
 pub const HALO_CLEAR: f32 = 8.0;
 
+/// An image whose median lies below this share of the way from its 1st to its 99th
+/// percentile is mostly dark background: its cells are the bright objects. Measured on
+/// the first image or frame of each case: bright objects (fluorescence nuclei and
+/// bacteria, real and synthetic, the synthetic bright blobs) 0.03–0.25; dark objects
+/// (phase-contrast colonies and rods, the synthetic dark shapes) 0.30–0.78.
+pub const DARK_BACKGROUND_MEDIAN: f64 = 0.27;
+
+/// Whether `image` looks like bright objects on a dark background
+/// ([`DARK_BACKGROUND_MEDIAN`]): the polarity the app opens an image or movie with, so a
+/// fluorescence movie is not tracked as dark objects (its background, then).
+pub fn looks_bright_on_dark(image: &Field) -> bool {
+    let mut v: Vec<f32> = (image.data.iter())
+        .copied()
+        .filter(|x| x.is_finite())
+        .collect();
+    if v.len() < 3 {
+        return false;
+    }
+    let n = v.len() - 1;
+    let mut at = |q: f64| {
+        *v.select_nth_unstable_by((q * n as f64) as usize, f32::total_cmp)
+            .1
+    };
+    let (lo, mid, hi) = (at(0.01) as f64, at(0.5) as f64, at(0.99) as f64);
+    hi > lo && (mid - lo) / (hi - lo) < DARK_BACKGROUND_MEDIAN
+}
+
 /// Whether the dark cells of `labels` (non-zero, one per pixel of `image`) look wrapped
 /// in a bright halo ([`HALO_SHARE`]): an image the user did not say was phase contrast
 /// that likely is, where the generic modality reads the halo as a rim of cell and keeps
@@ -121,6 +148,25 @@ mod tests {
             }
         }
         (Field::new(w, h, data), labels)
+    }
+
+    #[test]
+    fn bright_cells_on_dark_ground_are_told_from_dark_cells_on_grey() {
+        // A dark disk on grey ground, and the same inverted: a bright disk on darker
+        // ground (the median is the ground's either way, at the bottom or the top).
+        let (dark, _) = disk_with_rim(0.5);
+        let bright = Field::new(64, 64, dark.data.iter().map(|v| 1.0 - v).collect());
+        assert!(!looks_bright_on_dark(&dark));
+        assert!(looks_bright_on_dark(&bright));
+        let mut spots = vec![0.1f32; 64 * 64];
+        for k in (0..64 * 64).step_by(7) {
+            spots[k] = 0.9;
+        }
+        assert!(looks_bright_on_dark(&Field::new(64, 64, spots)));
+        assert!(
+            !looks_bright_on_dark(&Field::new(8, 8, vec![0.3; 64])),
+            "flat"
+        );
     }
 
     #[test]
