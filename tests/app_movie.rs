@@ -573,6 +573,11 @@ fn a_tracked_and_corrected_movie_saved_as_a_session_reopens_as_it_was() {
     again.step();
     again.step();
     assert_no_error(&again);
+    let notice = again.state().status.notice.clone().unwrap_or_default();
+    assert!(
+        notice.starts_with("session opened: tracked 8 of 8 frames"),
+        "{notice}"
+    );
     let opened = tracking(&again);
     assert_eq!(opened.frames, saved.frames);
     assert_eq!(opened.lineage, saved.lineage);
@@ -666,7 +671,7 @@ fn a_cell_deleted_ends_its_track_and_later_corrections_are_asked_about() {
         "{:?}",
         h.state().view.question
     );
-    h.get_by_label_contains("replaces your corrections on frames 6");
+    h.get_by_label_contains("replaces your corrections on frame 6.");
     assert_eq!(
         tracking(&h).frames[6].objects.len(),
         1,

@@ -730,6 +730,17 @@ impl TopoApp {
                 memory,
                 hint: None,
             });
+            // Not "draw seeds on frame 0", as a movie just opened: it is tracked.
+            let len = m.movie.len();
+            let done = m.tracking.as_ref().map_or(0, |t| t.frames.len());
+            let summary = self.tracking_summary(done, len);
+            let more = if done < len {
+                "; Continue tracking goes on"
+            } else {
+                ""
+            };
+            self.status
+                .notify(format!("session opened: {summary}{more}"));
         }
         self.show_movie_frame(s.shown);
         self.unsaved = false;

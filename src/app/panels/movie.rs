@@ -319,7 +319,8 @@ pub(in crate::app) fn question_ui(cx: &mut Ctx, ctx: &egui::Context) {
         .show(ctx, |ui| match &q {
             super::super::Question::Retrack { frame, later } => {
                 ui.label(format!(
-                    "Tracking the frames after frame {frame} again replaces your corrections on frames {}.",
+                    "Tracking the frames after frame {frame} again replaces your corrections on {} {}.",
+                    frames_word(later),
                     list(later)
                 ));
                 ui.horizontal(|ui| {
@@ -338,7 +339,8 @@ pub(in crate::app) fn question_ui(cx: &mut Ctx, ctx: &egui::Context) {
             }
             super::super::Question::TrackAgain(corrected) => {
                 ui.label(format!(
-                    "Tracking again from frame 0 replaces your corrections on frames {} (Undo brings them back).",
+                    "Tracking again from frame 0 replaces your corrections on {} {} (Undo brings them back).",
+                    frames_word(corrected),
                     list(corrected)
                 ));
                 ui.horizontal(|ui| {
@@ -371,4 +373,13 @@ pub(in crate::app) fn question_ui(cx: &mut Ctx, ctx: &egui::Context) {
                 });
             }
         });
+}
+
+/// "frame" or "frames", as many as `frames`.
+fn frames_word(frames: &[usize]) -> &'static str {
+    if frames.len() == 1 {
+        "frame"
+    } else {
+        "frames"
+    }
 }
