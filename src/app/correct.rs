@@ -431,7 +431,7 @@ pub fn corrected(
     for &(label, k) in &kept {
         label_of[k] = new.start_as(label, t, begins[k].unwrap_or(0));
     }
-    // The others in the groups' order, numbered on (cells left to right).
+    // The others numbered on, left to right.
     for k in 0..cells.len() {
         if let (Some(parent), 0) = (begins[k], label_of[k]) {
             label_of[k] = new.start(t, parent);

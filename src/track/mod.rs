@@ -741,6 +741,7 @@ impl Tracker {
     /// covers, when that area grew by the smallest cell kept since the first frame after
     /// the last look, or when no cell is left. Returns the origins, the pieces per origin
     /// and the frames evolved.
+    ///
     /// A seed mostly where a cell the user deleted was the frame before
     /// (`ghosts_before`), or near one whose contour vanished or shrank as a dividing
     /// cell's does ([`ADOPT_REACH`], [`ADOPT_KEPT`], as [`Tracker::adopt`] takes
