@@ -1039,6 +1039,22 @@ fn a_tracker_resumed_with_its_memory_goes_on_as_the_run_did() {
     );
 }
 
+/// `tracker` (which tracked `movie` up to `frame`) resumed from `frame` as corrected,
+/// with `memory`, and run on the rest of `movie`: the frames after and the lineage.
+fn resumed_from(
+    settings: &TrackSettings,
+    tracker: &Tracker,
+    frame: &TrackedFrame,
+    memory: topocontour::track::Memory,
+    movie: &[Field],
+) -> (Vec<TrackedFrame>, String) {
+    let t = frame.frame;
+    let lineage = tracker.lineage().clone();
+    let mut r = Tracker::resume(settings.clone(), lineage, frame, W, H, Some(memory));
+    r.set_previous(movie[t].clone());
+    run_on(r, &movie[t + 1..])
+}
+
 /// A cell deleted by hand stays deleted: the tracker resumed after the correction takes
 /// no new cell where it is, though the image still shows it, as it moves on further than
 /// its own size, and still finds a cell that appears elsewhere. Resumed with the same
@@ -1074,18 +1090,7 @@ fn a_cell_deleted_by_hand_is_not_found_again_and_new_cells_elsewhere_are() {
     let mut new = old.clone();
     new.objects.retain(|o| !near(o, gone(2).x, gone(2).y));
     assert_eq!(new.objects.len(), 1);
-    let resumed = |memory| {
-        let mut r = Tracker::resume(
-            settings.clone(),
-            tracker.lineage().clone(),
-            &new,
-            W,
-            H,
-            Some(memory),
-        );
-        r.set_previous(movie[2].clone());
-        run_on(r, &movie[3..]).0
-    };
+    let resumed = |memory| resumed_from(&settings, &tracker, &new, memory, &movie).0;
     let memory = tracker.memory();
     let after = resumed(memory.corrected(&old, &new, W, H));
     assert_eq!(memory.corrected(&old, &new, W, H).unwanted().len(), 1);
@@ -1133,16 +1138,8 @@ fn a_deleted_cell_that_divides_stays_deleted_with_its_daughters() {
     assert_eq!(old.objects.iter().filter(|o| rod(o)).count(), 1);
     let mut new = old.clone();
     new.objects.retain(|o| !rod(o));
-    let mut r = Tracker::resume(
-        settings.clone(),
-        tracker.lineage().clone(),
-        &new,
-        W,
-        H,
-        Some(tracker.memory().corrected(&old, &new, W, H)),
-    );
-    r.set_previous(movie[3].clone());
-    let (after, lineage) = run_on(r, &movie[4..]);
+    let memory = tracker.memory().corrected(&old, &new, W, H);
+    let (after, lineage) = resumed_from(&settings, &tracker, &new, memory, &movie);
     for ((t, f), was) in (4..).zip(&after).zip(&first) {
         assert!(
             !f.objects.iter().any(rod),
@@ -1198,16 +1195,8 @@ fn a_deleted_nucleus_whose_daughters_are_pushed_apart_stays_deleted() {
     let mut new = old.clone();
     new.objects.retain(|o| !nucleus(o));
     assert_eq!(new.objects.len(), 1);
-    let mut r = Tracker::resume(
-        settings,
-        tracker.lineage().clone(),
-        &new,
-        W,
-        H,
-        Some(tracker.memory().corrected(&old, &new, W, H)),
-    );
-    r.set_previous(movie[1].clone());
-    let (after, _) = run_on(r, &movie[2..]);
+    let memory = tracker.memory().corrected(&old, &new, W, H);
+    let (after, _) = resumed_from(&settings, &tracker, &new, memory, &movie);
     for (t, f) in (2..).zip(&after) {
         let left: Vec<_> = f.objects.iter().map(|o| o.centroid).collect();
         assert!(
