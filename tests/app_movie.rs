@@ -422,6 +422,22 @@ fn a_tracked_frame_lists_and_exports_its_cells_by_track() {
     seen.sort_unstable();
     seen.dedup();
     assert_eq!(seen, [0, 2, 3], "the frame's cells by track");
+    // Open for correction (Edit), the same: by track, not by the run's contour ids.
+    click_label(&mut h, "Edit");
+    h.step();
+    h.step();
+    assert!(h.state().doc.run.is_some(), "a correction run on screen");
+    let edit = temp("frame5.edit.labels.tif");
+    h.state_mut().send(Command::Export(
+        topocontour::app::Format::Labels,
+        edit.to_path_buf(),
+    ));
+    h.step();
+    assert_no_error(&h);
+    let again = image::open(&edit).unwrap().into_luma16();
+    assert!(again == img, "the tracked frame's label image, by track");
+    click_label(&mut h, "Select");
+    h.step();
     let svg = temp("f.svg");
     h.state_mut().send(Command::Export(
         topocontour::app::Format::Svg,

@@ -355,7 +355,14 @@ impl TopoApp {
     /// Writes the frame on screen (the evolver's state at it) to `path`.
     fn export(&mut self, format: Format, path: &Path) -> Result<(), AppError> {
         let doc = &self.doc;
-        if let Some(m) = doc.movie.as_ref().filter(|_| doc.run.is_none()) {
+        // A tracked frame exports its cells by track; so too while it is open for
+        // correction (the correction is in the tracking), but for the outlines, which
+        // the run on screen gives.
+        let by_track = |m: &super::MovieDoc| {
+            doc.run.is_none()
+                || (m.correcting.is_some() && matches!(format, Format::Csv | Format::Labels))
+        };
+        if let Some(m) = doc.movie.as_ref().filter(|m| by_track(m)) {
             if let Some(bytes) = self.tracked_export(format, path)? {
                 return super::movie::write_beside(&m.movie, path, bytes);
             }
