@@ -515,10 +515,10 @@ impl Tracker {
             shapes.push(shrunk(ring, self.settings.shrink));
         }
         let mut evolved = self.evolve(image, &shapes)?;
+        let before = self.unwanted.clone();
         let mut ghosts_before = Vec::new();
-        if evolved.0.len() > cells {
-            let ghosts = evolved.0.split_off(cells);
-            for (ring, pieces) in self.unwanted.iter().zip(&ghosts) {
+        if let Some(ghosts) = self.take_ghosts(&mut evolved.0, cells) {
+            for (ring, pieces) in before.iter().zip(&ghosts) {
                 let (a2, c) = crate::geometry::area2_centroid(ring);
                 let kept: f64 = pieces.iter().map(|o| o.area).sum();
                 ghosts_before.push(Ghost {
@@ -528,14 +528,13 @@ impl Tracker {
                     kept,
                 });
             }
-            self.unwanted = ghosts.into_iter().flatten().map(|o| o.ring).collect();
         }
         let model = evolved.2.clone();
         let (origins, mut pieces, evolution_frames) = if t > 0 && self.settings.new_cells {
             self.with_new_cells(image, origins, evolved, &ghosts_before)?
         } else {
             if t == 0 {
-                self.residual = leftover(&evolved, w, h);
+                self.residual = self.leftover(&evolved, w, h);
                 self.next_seeding = self.settings.seed_every.max(1);
             }
             (origins, evolved.0, evolved.1)
@@ -807,14 +806,32 @@ impl Tracker {
         shapes.extend(self.unwanted.iter().map(|r| Shape::Polygon(r.clone())));
         shapes.extend(ghost_seeds.into_iter().map(|(s, _)| s));
         let mut again = self.evolve(image, &shapes)?;
-        if again.0.len() > cells {
-            let ghosts = again.0.split_off(cells);
-            self.unwanted = ghosts.into_iter().flatten().map(|o| o.ring).collect();
-        }
-        self.residual =
-            (again.2.as_deref()).map_or(0, |m| free_object(m, &self.covered(&again.0, w, h)));
+        self.take_ghosts(&mut again.0, cells);
+        self.residual = self.leftover(&again, w, h);
         let (all, pieces) = regroup(all, again.0, self.shred_share());
         Ok((all, pieces, evolved.1 + again.1))
+    }
+
+    /// The pieces of the shapes from `cells` on (where the user deleted cells), taken out
+    /// of `pieces`; their outlines are where the deleted cells now lie. None when there
+    /// were none.
+    fn take_ghosts(
+        &mut self,
+        pieces: &mut Vec<Vec<TrackedObject>>,
+        cells: usize,
+    ) -> Option<Vec<Vec<TrackedObject>>> {
+        if pieces.len() <= cells {
+            return None;
+        }
+        let ghosts = pieces.split_off(cells);
+        self.unwanted = ghosts.iter().flatten().map(|o| o.ring.clone()).collect();
+        Some(ghosts)
+    }
+
+    /// Object pixels an evolution left uncovered ([`free_object`]), where the user
+    /// deleted cells counting as covered.
+    fn leftover(&self, evolved: &Evolved, w: usize, h: usize) -> usize {
+        (evolved.2.as_deref()).map_or(0, |m| free_object(m, &self.covered(&evolved.0, w, h)))
     }
 
     /// The label raster of `pieces` on a `w`×`h` frame, where the user deleted cells
@@ -1463,14 +1480,6 @@ fn half_width(live: &[(u32, Vec<Point>)]) -> f64 {
         .collect();
     hw.sort_by(f64::total_cmp);
     hw.get(hw.len() / 2).copied().unwrap_or(0.0)
-}
-
-/// Object pixels no cell of `evolved` covers (see [`free_object`]).
-fn leftover(evolved: &Evolved, w: usize, h: usize) -> usize {
-    evolved
-        .2
-        .as_deref()
-        .map_or(0, |m| free_object(m, &labels_of(&evolved.0, w, h)))
 }
 
 /// Whether `o` touches the edge of a `w`×`h` frame (a cell coming into view).
