@@ -716,6 +716,63 @@ fn a_cell_deleted_ends_its_track_and_later_corrections_are_asked_about() {
     assert_eq!(tracking(&h).corrected.len(), 1);
 }
 
+/// Cells keep their numbers across a correction: the rod deleted before it divides takes
+/// its daughters' tracks with it, and the cell appearing later keeps the number the first
+/// run gave it (numbered on, it took a daughter's).
+#[test]
+fn a_correction_leaves_the_numbers_of_later_cells_as_they_were() {
+    let rod = |a: f64, b: f64| (Point::new(a, 32.0), Point::new(b, 32.0), 6.0);
+    let late = (Point::new(84.0, 52.0), Point::new(84.0, 52.0), 6.0);
+    let mut frames: Vec<_> = [10.0, 12.0, 14.0, 16.0]
+        .map(|h| frame(96, 64, &[rod(48.0 - h, 48.0 + h)]))
+        .into();
+    for gap in [3.0, 4.0, 5.0, 6.0] {
+        let mut cells = vec![rod(24.0, 42.0 - gap), rod(54.0 + gap, 72.0)];
+        if gap >= 4.0 {
+            cells.push(late);
+        }
+        frames.push(frame(96, 64, &cells));
+    }
+    let (mut h, _movie) = tracked_movie("numbers", &frames);
+    let before = tracking(&h);
+    let at_late = |f: &topocontour::track::TrackedFrame| {
+        (f.objects.iter())
+            .find(|o| o.centroid.dist(Point::new(84.0, 52.0)) < 4.0)
+            .map(|o| o.track)
+    };
+    let number = at_late(&before.frames[7]).expect("the first run finds the late cell");
+    assert_eq!(
+        before.lineage.get(number).map(|t| t.parent),
+        Some(0),
+        "{}",
+        before.lineage.ctc_text()
+    );
+    assert!(
+        number > 3,
+        "numbered after the daughters: {}",
+        before.lineage.ctc_text()
+    );
+    h.state_mut().send(Command::SeekMovieFrame(1));
+    h.step();
+    let tr = delete_at(&mut h, Point::new(48.0, 32.0));
+    assert_eq!(tr.divisions().count(), 0, "{}", tr.lineage.ctc_text());
+    for t in 5..8 {
+        assert_eq!(
+            at_late(&tr.frames[t]),
+            at_late(&before.frames[t]),
+            "frame {t}"
+        );
+    }
+    // Saved and opened again, the numbers stand.
+    let path = save_session(&mut h, "numbers.session.json");
+    let mut again = harness(TopoApp::default());
+    (again.state_mut()).send(Command::OpenSession(path.to_path_buf()));
+    again.step();
+    again.step();
+    assert_no_error(&again);
+    assert_eq!(tracking(&again).lineage, tr.lineage);
+}
+
 /// A cell deleted by hand changes nothing else: the frames after the correction are
 /// tracked again as the first run tracked them (the tracker resumes with what it
 /// remembered of the frame), the division of a rod elsewhere included. The deleted cell's

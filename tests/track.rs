@@ -3,6 +3,7 @@
 //! border, a cell leaving. Tracks and parents asserted exactly, as `res_track.txt` lists
 //! them (label, first frame, last frame, parent).
 
+use std::sync::Arc;
 use topocontour::evolution::{Field, Modality, Params, Polarity, Shape};
 use topocontour::geometry::Point;
 use topocontour::io::movie::normalise;
@@ -1172,6 +1173,80 @@ fn a_deleted_cell_that_divides_stays_deleted_with_its_daughters() {
         lineage.lines().count(),
         4,
         "two disks and the disk entering: {lineage}"
+    );
+}
+
+/// After a correction the cells keep their numbers: the frames tracked again number a
+/// track begun after the corrected frame as the run they replace did, and a track that
+/// run did not have after all of its. Deleting the rod before it divides takes its two
+/// daughters away; numbered on, the cell appearing later took a daughter's number.
+#[test]
+fn cells_tracked_again_after_a_correction_keep_their_numbers() {
+    let movie = eventful();
+    let settings = TrackSettings::new(Params {
+        polarity: Polarity::Bright,
+        ..Params::default()
+    });
+    let mut tracker = Tracker::new(settings.clone(), Vec::new());
+    let mut frames = Vec::new();
+    for f in &movie[..4] {
+        frames.push(tracker.step(f).unwrap());
+    }
+    let mut on = tracker.clone();
+    let first: Vec<Arc<TrackedFrame>> = movie[4..]
+        .iter()
+        .map(|f| Arc::new(on.step(f).unwrap()))
+        .collect();
+    let rod = |o: &topocontour::track::TrackedObject| (o.centroid.y - 40.0).abs() < 6.0;
+    let old = frames[3].clone();
+    let mut new = old.clone();
+    new.objects.retain(|o| !rod(o));
+    let resumed = |keep: bool| {
+        let memory = tracker.memory().corrected(&old, &new, W, H);
+        let mut r = Tracker::resume(
+            settings.clone(),
+            tracker.lineage().clone(),
+            &new,
+            W,
+            H,
+            Some(memory),
+        );
+        if keep {
+            r = r.keeping_numbers(first.iter().cloned(), on.lineage());
+        }
+        r.set_previous(movie[3].clone());
+        run_on(r, &movie[4..])
+    };
+    let numbers = |f: &TrackedFrame| -> Vec<(u32, Point)> {
+        f.objects
+            .iter()
+            .filter(|o| !rod(o))
+            .map(|o| (o.track, o.centroid))
+            .collect()
+    };
+    let same_numbers = |after: &[TrackedFrame]| {
+        after.iter().zip(&first).all(|(f, was)| {
+            numbers(f)
+                .iter()
+                .all(|&(k, c)| numbers(was).iter().any(|&(l, d)| l == k && c.dist(d) < 0.5))
+        })
+    };
+    let (kept, lineage) = resumed(true);
+    assert!(same_numbers(&kept), "{lineage}");
+    // The cells found as the first run found them, none of the rod's.
+    for (f, was) in kept.iter().zip(&first) {
+        assert_eq!(numbers(f).len(), numbers(was).len(), "frame {}", f.frame);
+        assert_eq!(f.objects.len(), numbers(f).len(), "frame {}", f.frame);
+    }
+    assert!(on
+        .lineage()
+        .tracks()
+        .iter()
+        .any(|t| t.first >= 6 && t.parent == 0));
+    let (renumbered, _) = resumed(false);
+    assert!(
+        !same_numbers(&renumbered),
+        "numbered on, the later cells change numbers"
     );
 }
 

@@ -163,6 +163,8 @@ impl TopoApp {
         m.correcting = Some((t, edits));
         let tr = m.tracking.as_mut().expect("checked");
         tr.id = super::movie::next_tracking_id();
+        // The frames tracked again number their cells as these did.
+        let replaced = (tr.frames.split_off(t + 1), tr.lineage.clone());
         tr.frames.truncate(t);
         tr.frames.push(frame.clone());
         // What the tracker knew after frame t (nothing, for a tracking reopened from its
@@ -183,7 +185,8 @@ impl TopoApp {
         let id = tr.id;
         match settings.filter(|_| t + 1 < len) {
             Some(s) => {
-                let tracker = Tracker::resume(s, lineage, &frame, w, h, Some(memory));
+                let tracker = Tracker::resume(s, lineage, &frame, w, h, Some(memory))
+                    .keeping_numbers(replaced.0, &replaced.1);
                 self.spawn_tracking(tracker, t + 1, id);
                 self.status.notify(format!(
                     "frame {t} corrected ({summary}): frames {}–{} are tracked again from it",
@@ -431,7 +434,9 @@ pub fn corrected(
     for &(label, k) in &kept {
         label_of[k] = new.start_as(label, t, begins[k].unwrap_or(0));
     }
-    // The others numbered on, left to right.
+    // The others numbered on, left to right, after every track of the run: the tracks
+    // begun after this frame keep their numbers when tracked again.
+    new.reserve(lineage.last_label());
     for k in 0..cells.len() {
         if let (Some(parent), 0) = (begins[k], label_of[k]) {
             label_of[k] = new.start(t, parent);

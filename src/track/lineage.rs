@@ -37,7 +37,9 @@ impl Division {
 }
 
 /// The tracks of a movie so far, by label. Labels are given in order of birth and never
-/// given again, so a withdrawn track leaves a gap.
+/// given again, so a withdrawn track leaves a gap; the frames tracked again after a
+/// correction keep the numbers the run they replace gave ([`Lineage::start_at`]), and
+/// their new tracks are numbered after that run's ([`Lineage::reserve`]).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Lineage {
     tracks: Vec<Track>,
@@ -68,6 +70,35 @@ impl Lineage {
         }
         self.given = label - 1;
         self.start(frame, parent)
+    }
+
+    /// A new track starting at `frame` labelled `label`, which no track has; labels given
+    /// on follow the largest given. Returns `label`.
+    pub fn start_at(&mut self, label: u32, frame: usize, parent: u32) -> u32 {
+        debug_assert!(self.index(label).is_none(), "track {label} exists");
+        let k = self.tracks.partition_point(|t| t.label < label);
+        self.tracks.insert(
+            k,
+            Track {
+                label,
+                first: frame,
+                last: frame,
+                parent,
+            },
+        );
+        self.given = self.given.max(label);
+        label
+    }
+
+    /// New labels follow `label` at least: the labels up to it stay free for
+    /// [`Lineage::start_at`].
+    pub fn reserve(&mut self, label: u32) {
+        self.given = self.given.max(label);
+    }
+
+    /// The largest label given.
+    pub fn last_label(&self) -> u32 {
+        self.given
     }
 
     /// Track `label` is seen in `frame`.

@@ -418,6 +418,9 @@ pub struct Tracker {
     /// The outlines of cells the user deleted ([`Memory::corrected`]), evolved every
     /// frame as the cells are: no new cell is taken where they lie.
     unwanted: Vec<Vec<Point>>,
+    /// The run a correction replaced, whose numbers the tracks begun after it keep
+    /// ([`Tracker::keeping_numbers`]).
+    numbers: Option<resume::Numbers>,
 }
 
 impl Tracker {
@@ -438,6 +441,7 @@ impl Tracker {
             necks: HashMap::new(),
             born: HashMap::new(),
             unwanted: Vec::new(),
+            numbers: None,
         }
     }
 
@@ -1366,33 +1370,52 @@ impl Tracker {
                 self.lineage.extend(track, t);
                 labels.push(track);
             }
-            (Some(track), n) if self.found_as_one(track, t) => {
+            (Some(track), _) if self.found_as_one(track, t) => {
                 self.lineage.extend(track, t);
                 labels.push(track);
-                labels.extend((1..n).map(|_| self.lineage.start(t, 0)));
+                labels.extend(group[1..].iter().map(|o| self.begin(t, 0, o)));
             }
             (Some(parent), _) => {
-                let children = [self.lineage.start(t, parent), self.lineage.start(t, parent)];
+                let children = [
+                    self.begin(t, parent, &group[0]),
+                    self.begin(t, parent, &group[1]),
+                ];
                 if self.measured_at_birth(parent, t) {
                     for (o, c) in group.iter().zip(children) {
                         self.born.insert(c, Size::of([o]));
                     }
                 }
+                let mut sorted = children;
+                sorted.sort_unstable();
                 frame.divisions.push(Division {
                     frame: t,
                     parent,
-                    children,
+                    children: sorted,
                 });
                 labels.extend(children);
-                while labels.len() < group.len() {
-                    labels.push(self.lineage.start(t, 0));
-                }
+                labels.extend(group[2..].iter().map(|o| self.begin(t, 0, o)));
             }
-            (None, n) => labels.extend((0..n).map(|_| self.lineage.start(t, 0))),
+            (None, _) => labels.extend(group.iter().map(|o| self.begin(t, 0, o))),
         }
         for (mut o, label) in group.into_iter().zip(labels) {
             o.track = label;
             frame.objects.push(o);
+        }
+    }
+
+    /// A new track at frame `t` for `cell`, of `parent` (0: none): numbered as the run a
+    /// correction replaced numbered the same cell ([`Tracker::keeping_numbers`]), else
+    /// the next label.
+    fn begin(&mut self, t: usize, parent: u32, cell: &TrackedObject) -> u32 {
+        match self
+            .numbers
+            .as_mut()
+            .and_then(|n| n.number(t, parent, cell))
+        {
+            Some(label) if self.lineage.get(label).is_none() => {
+                self.lineage.start_at(label, t, parent)
+            }
+            _ => self.lineage.start(t, parent),
         }
     }
 }

@@ -16,11 +16,18 @@
 //! again as a new cell at the next look). So it follows the cell it was as that cell
 //! moves and divides (a place that only followed the stage's drift let a nucleus deleted
 //! at frame 10 come back when it divided at frame 36, beside where it was deleted).
+//!
+//! The cells keep their numbers: a track begun after the correction is numbered as the
+//! run it replaces numbered the same cell ([`Numbers`]), and a track that run did not
+//! have takes a number after all of its. Numbered on from the corrected frame, a deleted
+//! cell's daughters or a cut's new cell shifted the number of every later cell, so cell
+//! 40 of the movie the user had looked at was cell 38 after a correction far from it.
 
 use super::neck::Neck;
-use super::{Division, Lineage, Size, TrackSettings, TrackedFrame, Tracker};
-use crate::geometry::{fill_even_odd, Point};
-use std::collections::HashMap;
+use super::{Division, Lineage, Size, TrackSettings, TrackedFrame, TrackedObject, Tracker};
+use crate::geometry::{fill_even_odd, winding_number, Point};
+use std::collections::{HashMap, HashSet};
+use std::sync::Arc;
 
 /// A corrected frame's cell is the one the tracker knew under its track when its area is
 /// within this share of it and its centroid within this many pixels.
@@ -132,7 +139,64 @@ impl Memory {
     }
 }
 
+/// The frames a correction replaced, and their tracks: a track begun in the frames
+/// tracked again keeps the number of the track the replaced run began there of the same
+/// parent, on the same cell (each cell's centroid inside the other's outline).
+#[derive(Clone, Debug)]
+pub(super) struct Numbers {
+    frames: HashMap<usize, Arc<TrackedFrame>>,
+    lineage: Lineage,
+    /// Numbers given again already: each once.
+    given: HashSet<u32>,
+}
+
+impl Numbers {
+    /// The replaced run's number for `cell`, beginning a track at frame `t` of `parent`
+    /// (0: none); its frames before `t` are no longer needed.
+    pub(super) fn number(&mut self, t: usize, parent: u32, cell: &TrackedObject) -> Option<u32> {
+        self.frames.retain(|&k, _| k >= t);
+        let inside = |p: Point, ring: &[Point]| winding_number(ring, p) != 0;
+        let label = (self.frames.get(&t)?.objects.iter())
+            .filter(|o| !self.given.contains(&o.track))
+            .filter(|o| {
+                // A division dated a frame earlier began its tracks there.
+                self.lineage
+                    .get(o.track)
+                    .is_some_and(|tr| tr.parent == parent && (tr.first == t || tr.first + 1 == t))
+            })
+            .filter(|o| inside(o.centroid, &cell.ring) && inside(cell.centroid, &o.ring))
+            .min_by(|a, b| {
+                let d = |o: &TrackedObject| o.centroid.dist(cell.centroid);
+                d(a).total_cmp(&d(b))
+            })?
+            .track;
+        self.given.insert(label);
+        Some(label)
+    }
+}
+
 impl Tracker {
+    /// This tracker, resumed after a correction, numbering the tracks it begins as the
+    /// run it replaces did: that run's `frames` after the corrected one and its
+    /// `lineage`. A track that run did not have is numbered after all of its.
+    pub fn keeping_numbers(
+        mut self,
+        frames: impl IntoIterator<Item = Arc<TrackedFrame>>,
+        lineage: &Lineage,
+    ) -> Self {
+        self.lineage.reserve(lineage.last_label());
+        let from = self.frame;
+        self.numbers = Some(Numbers {
+            frames: (frames.into_iter())
+                .filter(|f| f.frame >= from)
+                .map(|f| (f.frame, f))
+                .collect(),
+            lineage: lineage.clone(),
+            given: HashSet::new(),
+        });
+        self
+    }
+
     /// What this tracker remembers beyond the last frame's contours and the tracks: with
     /// them, [`Tracker::resume`] gives a tracker that goes on as this one would.
     pub fn memory(&self) -> Memory {

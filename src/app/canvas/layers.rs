@@ -74,16 +74,24 @@ fn draw_rings(
             Stroke::new(if ring.hole { 1.5 } else { 2.0 }, colour),
         ));
         if let (Some(&(k, c)), false) = (track, ring.hole) {
-            let at = view.to_screen(c) + shift;
-            painter.text(
-                at,
-                egui::Align2::CENTER_CENTER,
-                k.to_string(),
-                font.clone(),
-                colour,
-            );
+            track_number(painter, view.to_screen(c) + shift, k, &font, colour);
         }
     }
+}
+
+/// A track's number at `at` in its colour, on a dark plate: read over bright nuclei as
+/// over dark rods (drawn bare, a yellow number vanished on a bright nucleus).
+fn track_number(
+    painter: &egui::Painter,
+    at: Pos2,
+    track: u32,
+    font: &egui::FontId,
+    colour: Color32,
+) {
+    let galley = painter.layout_no_wrap(track.to_string(), font.clone(), colour);
+    let rect = Rect::from_center_size(at, galley.size()).expand2(Vec2::new(2.0, 0.0));
+    painter.rect_filled(rect, 3.0, Color32::from_black_alpha(160));
+    painter.galley(rect.min + Vec2::new(2.0, 0.0), galley, colour);
 }
 
 /// The second engine's half: the same image and view, its contours, both halves labelled.
@@ -267,13 +275,7 @@ pub(super) fn tracks_layer(cx: &Ctx, painter: &egui::Painter, view: View) {
             ));
         }
         painter.add(egui::Shape::line(pts, Stroke::new(2.0, colour)));
-        painter.text(
-            view.to_screen(o.centroid),
-            egui::Align2::CENTER_CENTER,
-            o.track.to_string(),
-            font.clone(),
-            colour,
-        );
+        track_number(painter, view.to_screen(o.centroid), o.track, &font, colour);
     }
     let magenta = Stroke::new(2.5, Color32::from_rgb(255, 40, 200));
     for d in &frame.divisions {
