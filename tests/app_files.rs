@@ -6,7 +6,7 @@ mod app_kit;
 
 use app_kit::*;
 use egui_kittest::kittest::Queryable;
-use topocontour::app::{Command, Format, TopoApp};
+use topocontour::app::{Command, Format, Question, TopoApp};
 
 #[test]
 fn closing_with_work_not_saved_asks_first() {
@@ -41,18 +41,42 @@ fn closing_with_work_not_saved_asks_first() {
     assert!(close_window(&mut h), "not asked twice");
 }
 
+/// Sends `open` and answers "Open without saving" when it asks.
+fn open_over(h: &mut egui_kittest::Harness<'_, TopoApp>, open: Command) {
+    h.state_mut().send(open);
+    // Applied at the next frame; its question shows from the one after.
+    h.run_steps(3);
+    if matches!(h.state().view.question, Some(Question::Open(_))) {
+        click_label(h, "Open without saving");
+        h.step();
+        h.step();
+    }
+}
+
 #[test]
-fn opening_over_work_not_saved_says_that_work_waits_in_undo() {
+fn opening_over_work_not_saved_asks_first_and_the_work_waits_in_undo() {
     let mut h = harness(bright_bridge_with_seeds(&[(40.0, 40.0, 5.0)]));
     h.step();
     let work =
         |h: &egui_kittest::Harness<'_, TopoApp>| h.state().unsaved_work().unwrap_or_default();
-    // Another image opened over the seed: the image has nothing to save, the seed is in
-    // Undo, and closing says so.
+    // Another image asked to open over the seed: asked first; Cancel keeps the seed.
     h.state_mut()
         .send(Command::OpenImage(case_image("blobs_wrap")));
+    h.run_steps(3);
+    assert!(
+        matches!(h.state().view.question, Some(Question::Open(_))),
+        "asked before opening"
+    );
+    h.get_by_label_contains("not saved as a session");
+    click_label(&mut h, "Cancel");
     h.step();
+    assert!(h.state().view.question.is_none());
+    assert_eq!(h.state().doc.shapes.len(), 1, "the seed stays");
+    // Opened without saving: the image has nothing to save, the seed is in Undo, and
+    // closing says so.
+    open_over(&mut h, Command::OpenImage(case_image("blobs_wrap")));
     assert_no_error(&h);
+    assert!(h.state().doc.shapes.is_empty(), "the image opened");
     assert!(!close_window(&mut h), "the seed waits in Undo: asked");
     h.get_by_label_contains("before you opened image.png");
     assert!(!work(&h).contains("as a session"), "{}", work(&h));
@@ -71,8 +95,7 @@ fn opening_over_work_not_saved_says_that_work_waits_in_undo() {
             radius: 5.0,
         }));
     h.step();
-    h.state_mut().send(Command::OpenSession(path.to_path_buf()));
-    h.step();
+    open_over(&mut h, Command::OpenSession(path.to_path_buf()));
     assert_no_error(&h);
     assert_eq!(h.state().doc.shapes.len(), 1, "the session's one seed");
     let name = path.file_name().unwrap().to_string_lossy().into_owned();
@@ -85,9 +108,7 @@ fn opening_over_work_not_saved_says_that_work_waits_in_undo() {
     h.step();
     assert!(work(&h).ends_with(&replaced), "{}", work(&h));
     // A file that does not open changes nothing.
-    h.state_mut()
-        .send(Command::OpenImage("/nonexistent/x.png".into()));
-    h.step();
+    open_over(&mut h, Command::OpenImage("/nonexistent/x.png".into()));
     assert!(h.state().status.error.is_some());
     assert_eq!(h.state().doc.shapes.len(), 1);
     assert!(work(&h).ends_with(&replaced), "{}", work(&h));
@@ -111,9 +132,7 @@ fn opening_over_work_not_saved_says_that_work_waits_in_undo() {
     let session = save_session(&mut h, "changing.json");
     seed_at(&mut h, 60.0);
     std::fs::copy(case_image("blobs_wrap"), &image).unwrap();
-    h.state_mut()
-        .send(Command::OpenSession(session.to_path_buf()));
-    h.step();
+    open_over(&mut h, Command::OpenSession(session.to_path_buf()));
     assert!(h.state().status.error.is_some(), "the image changed");
     assert_eq!(h.state().doc.shapes.len(), 2);
     assert!(work(&h).contains("not saved as a session"), "{}", work(&h));

@@ -716,6 +716,32 @@ fn a_cell_deleted_ends_its_track_and_later_corrections_are_asked_about() {
     assert_eq!(tracking(&h).corrected.len(), 1);
 }
 
+/// Opening a movie over a tracking not saved asks first; Cancel keeps the tracking.
+#[test]
+fn opening_a_movie_over_a_tracking_not_saved_asks_first() {
+    let (mut h, movie) = tracked_rod("open_over", 5);
+    let before = tracking(&h);
+    h.state_mut().send(Command::OpenMovie(movie.to_path_buf()));
+    h.run_steps(3);
+    assert!(matches!(
+        h.state().view.question,
+        Some(topocontour::app::Question::Open(_))
+    ));
+    h.get_by_label_contains("The tracking of 8 frames is not saved");
+    click_label(&mut h, "Cancel");
+    h.step();
+    assert!(h.state().view.question.is_none());
+    assert_eq!(tracking(&h).lineage, before.lineage, "the tracking stays");
+    h.state_mut().send(Command::OpenMovie(movie.to_path_buf()));
+    h.run_steps(3);
+    click_label(&mut h, "Open without saving");
+    h.run_steps(2);
+    assert!(
+        h.state().doc.movie.as_ref().unwrap().tracking.is_none(),
+        "opened anew"
+    );
+}
+
 /// Cells keep their numbers across a correction: the rod deleted before it divides takes
 /// its daughters' tracks with it, and the cell appearing later keeps the number the first
 /// run gave it (numbered on, it took a daughter's).

@@ -13,6 +13,13 @@ impl TopoApp {
     pub(super) fn apply_now(&mut self, c: Command) {
         match &c {
             Command::OpenImage(p) | Command::OpenSession(p) | Command::OpenMovie(p) => {
+                if !std::mem::take(&mut self.view.open_confirmed) {
+                    if let Some(what) = self.own_unsaved_work() {
+                        self.view.pending_open = Some(c.clone());
+                        self.view.question = Some(super::Question::Open(what));
+                        return;
+                    }
+                }
                 let name = p.file_name().map_or_else(
                     || p.display().to_string(),
                     |n| n.to_string_lossy().into_owned(),

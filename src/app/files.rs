@@ -212,7 +212,7 @@ impl TopoApp {
     }
 
     /// What closing now would lose of the document on screen.
-    fn own_unsaved_work(&self) -> Option<String> {
+    pub(super) fn own_unsaved_work(&self) -> Option<String> {
         if !self.unsaved {
             return None;
         }

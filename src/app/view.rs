@@ -84,6 +84,10 @@ pub struct ViewState {
     pub question: Option<Question>,
     /// The user chose to quit without saving: the window closes without asking again.
     pub quit_confirmed: bool,
+    /// The file to open once the user has answered [`Question::Open`].
+    pub pending_open: Option<super::Command>,
+    /// The user chose to open it without saving.
+    pub open_confirmed: bool,
     /// Frames of the movie read so far.
     pub(super) frames: super::movie::FrameCache,
     /// The window's context, to wake it from background threads.
@@ -113,6 +117,9 @@ pub enum Question {
     TrackAgain(Vec<usize>),
     /// The window was asked to close with work not saved (what, in a sentence).
     Quit(String),
+    /// A file was asked to be opened over work not saved (what, in a sentence): Undo
+    /// would bring the work back, but a user need not know that.
+    Open(String),
 }
 
 /// What the status bar says.

@@ -310,6 +310,7 @@ pub(in crate::app) fn question_ui(cx: &mut Ctx, ctx: &egui::Context) {
     };
     let title = match q {
         super::super::Question::Quit(_) => "Quit without saving?",
+        super::super::Question::Open(_) => "Open without saving?",
         _ => "Replace your corrections?",
     };
     egui::Window::new(title)
@@ -348,6 +349,25 @@ pub(in crate::app) fn question_ui(cx: &mut Ctx, ctx: &egui::Context) {
                         cx.send(Command::TrackConfirmed);
                     }
                     if ui.button("Keep my corrections").clicked() {
+                        cx.send(Command::CloseQuestion);
+                    }
+                });
+            }
+            super::super::Question::Open(what) => {
+                ui.label(what);
+                ui.horizontal(|ui| {
+                    if ui.button("Save session…").clicked() {
+                        cx.send(Command::CloseQuestion);
+                        cx.send(Command::SessionDialog(true));
+                    }
+                    if ui.button("Open without saving").clicked() {
+                        cx.send(Command::CloseQuestion);
+                        if let Some(open) = cx.view.pending_open.take() {
+                            cx.view.open_confirmed = true;
+                            cx.send(open);
+                        }
+                    }
+                    if ui.button("Cancel").clicked() {
                         cx.send(Command::CloseQuestion);
                     }
                 });
