@@ -138,6 +138,20 @@ fn opening_over_work_not_saved_asks_first_and_the_work_waits_in_undo() {
     assert!(work(&h).contains("not saved as a session"), "{}", work(&h));
 }
 
+/// A session named on the command line (`topocontour FILE.json`) opens as a session.
+#[test]
+fn a_session_given_on_the_command_line_opens_as_one() {
+    let mut h = harness(TopoApp::default());
+    h.state_mut()
+        .send(Command::OpenImage(case_image("bridge_merge")));
+    h.step();
+    seed_at(&mut h, 40.0);
+    let path = save_session(&mut h, "argument.session.json");
+    let app = TopoApp::new(None, Some(path.to_path_buf()));
+    assert!(app.status.error.is_none(), "{:?}", app.status.error);
+    assert_eq!(app.doc.shapes.len(), 1, "the session's seed");
+}
+
 /// Adds a seed disk at (`x`, 40).
 fn seed_at(h: &mut egui_kittest::Harness<'_, TopoApp>, x: f64) {
     h.state_mut()

@@ -278,7 +278,10 @@ fn keys_and_play_move_through_a_tracked_movie_not_the_evolution() {
     assert!(h.state().view.movie_playing);
     h.state_mut()
         .send(Command::OpenImage(case_image("bridge_merge")));
-    h.step();
+    // The tracking is not saved: asked first.
+    h.run_steps(3);
+    click_label(&mut h, "Open without saving");
+    h.run_steps(2);
     assert!(!h.state().view.movie_playing);
 }
 
@@ -422,6 +425,11 @@ fn a_tracked_frame_lists_and_exports_its_cells_by_track() {
     seen.sort_unstable();
     seen.dedup();
     assert_eq!(seen, [0, 2, 3], "the frame's cells by track");
+    // The CSV gives each cell the size it has in the label image.
+    let pixels = img.pixels().filter(|p| p.0[0] == 2).count();
+    let row = rows.iter().find(|r| r.starts_with("2,5,")).unwrap();
+    let area: f64 = row.split(',').nth(2).unwrap().parse().unwrap();
+    assert_eq!(area, pixels as f64, "{row}");
     // Open for correction (Edit), the same: by track, not by the run's contour ids.
     click_label(&mut h, "Edit");
     h.step();
@@ -558,6 +566,12 @@ fn a_wrong_split_undone_by_hand_tracks_the_frames_after_it_again() {
     let back = tracking(&h);
     assert_eq!(back.lineage.ctc_text(), before.lineage.ctc_text());
     assert!(back.corrected.is_empty());
+    // The status bar tells of the tracking brought back, not of the one undone.
+    let notice = h.state().status.notice.clone().unwrap_or_default();
+    assert_eq!(
+        notice,
+        "undone: tracked 8 of 8 frames: 3 tracks, 1 division"
+    );
 }
 
 #[test]
@@ -714,6 +728,89 @@ fn a_cell_deleted_ends_its_track_and_later_corrections_are_asked_about() {
     h.step();
     assert!(h.state().jobs.track.is_none());
     assert_eq!(tracking(&h).corrected.len(), 1);
+}
+
+/// Each movie frame shows with its own contrast window, as the first did (a phase-contrast
+/// colony's halo grows frame by frame, and frame 0's window showed later frames' ground
+/// black); a window the user set stays on every frame.
+#[test]
+fn each_movie_frame_shows_with_its_own_contrast_unless_the_user_set_one() {
+    // A graded grey ground, a speck of a dark cell (under 0.5 % of the frame), and a
+    // bright halo growing from nothing to a wide band.
+    let frames: Vec<image::GrayImage> = (0..3u32)
+        .map(|t| {
+            image::GrayImage::from_fn(96, 64, |x, y| {
+                let (dx, dy) = (x as f64 - 48.0, y as f64 - 32.0);
+                let r = (dx * dx + dy * dy).sqrt();
+                image::Luma([if r < 2.5 {
+                    30
+                } else if r < 3.0 + 8.0 * t as f64 {
+                    250
+                } else {
+                    100 + (x * 40 / 96) as u8
+                }])
+            })
+        })
+        .collect();
+    let dir = movie_folder("contrast", &frames);
+    let mut h = movie_app(&dir);
+    let window = |h: &Harness<'_, TopoApp>| h.state().doc.settings.contrast;
+    let own = |h: &Harness<'_, TopoApp>| {
+        topocontour::app::auto_contrast(h.state().doc.image.as_ref().unwrap())
+    };
+    assert_eq!(window(&h), own(&h));
+    let first = window(&h);
+    h.state_mut().send(Command::SeekMovieFrame(2));
+    h.step();
+    assert_eq!(window(&h), own(&h));
+    assert_ne!(window(&h), first, "frame 2's window is its own");
+    // The ground shows grey, not black, through it (frame 0's window made it 0).
+    let image = h.state().doc.image.clone().unwrap();
+    let ground = image.data[60 * image.width + 48];
+    let shown = |(lo, hi): (f32, f32)| (ground - lo) / (hi - lo);
+    assert!(shown(first) < 0.0, "{ground} {first:?}");
+    assert!(shown(window(&h)) > 0.1, "{ground} {:?}", window(&h));
+    // A window set by hand stays.
+    h.state_mut().send(Command::SetContrast((0.1, 0.9)));
+    h.step();
+    h.state_mut().send(Command::SeekMovieFrame(1));
+    h.step();
+    assert_eq!(window(&h), (0.1, 0.9));
+}
+
+/// A tracked frame whose cells cover most of it is said with the tracking's summary.
+#[test]
+fn cells_covering_most_of_a_tracked_frame_are_said() {
+    let disk = (Point::new(48.0, 32.0), Point::new(48.0, 32.0), 10.0);
+    let wide = (Point::new(20.0, 32.0), Point::new(76.0, 32.0), 31.0);
+    let frames = [
+        frame(96, 64, &[disk]),
+        frame(96, 64, &[disk]),
+        frame(96, 64, &[wide]),
+    ];
+    let (h, _movie) = tracked_movie("crowded", &frames);
+    let notice = h.state().status.notice.clone().unwrap_or_default();
+    assert!(
+        notice.contains("frame 2's cells cover") && notice.contains("check Dark/Bright objects"),
+        "{notice}"
+    );
+}
+
+/// The shapes that started frame 0 are drawn on frame 0 only, once the movie is tracked.
+#[test]
+fn the_seeds_of_frame_0_are_not_drawn_on_later_tracked_frames() {
+    let (mut h, _movie) = tracked_rod("seeds_shown", 0);
+    h.state_mut()
+        .send(Command::AddShape(topocontour::evolution::Shape::Disk {
+            center: Point::new(48.0, 32.0),
+            radius: 4.0,
+        }));
+    h.step();
+    assert!(h.state().doc.shapes_shown());
+    h.state_mut().send(Command::SeekMovieFrame(5));
+    h.step();
+    assert!(!h.state().doc.shapes_shown(), "frame 5 is tracked");
+    assert_eq!(h.state().doc.shapes.len(), 1, "kept for tracking again");
 }
 
 /// Opening a movie over a tracking not saved asks first; Cancel keeps the tracking.

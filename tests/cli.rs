@@ -651,6 +651,20 @@ fn replay_equals_segment() {
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("changed"));
+    // The app's tracking of a movie is no still image's session: replay says what it is.
+    let tracking = tmp("tracking.session.json");
+    std::fs::write(&tracking, r#"{"format":"topocontour-tracking","movie":{}}"#).unwrap();
+    let out = bin()
+        .args(["replay", tracking.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        err.contains("is the tracking of a movie: the app opens it"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
 }
 
 /// A three-page TIFF stack with a resolution of 2 pixels per µm (as ImageJ writes it):

@@ -1250,6 +1250,71 @@ fn cells_tracked_again_after_a_correction_keep_their_numbers() {
     );
 }
 
+/// Two cells joined by hand stay one cell in the frames after, while they touch: the
+/// resumed tracker holds the joined cell together until it grows, as a cell just born.
+/// Resumed without remembering the join, the two come apart again at the next frame,
+/// as a division.
+#[test]
+fn cells_joined_by_hand_stay_one_while_they_touch() {
+    // Two nuclei 3 px apart, drifting right together.
+    let movie: Vec<Field> = (0..7)
+        .map(|t| {
+            let x = 30.0 + t as f64;
+            blurred(frame(&[disk(x, 32.0, 8.0), disk(x + 19.0, 32.0, 8.0)]))
+        })
+        .collect();
+    let settings = TrackSettings::new(Params {
+        polarity: Polarity::Bright,
+        ..Params::default()
+    });
+    let mut tracker = Tracker::new(settings.clone(), Vec::new());
+    let mut frames = Vec::new();
+    for f in &movie[..3] {
+        frames.push(tracker.step(f).unwrap());
+    }
+    let old = frames[2].clone();
+    assert_eq!(old.objects.len(), 2, "two cells found");
+    // Joined at frame 2: one outline round both, the left one's track.
+    let keep = old.objects.iter().map(|o| o.track).min().unwrap();
+    let ring: Vec<Point> = (0..64)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / 64.0;
+            let cx = if a.cos() >= 0.0 { 51.5 } else { 32.5 };
+            Point::new(cx + 9.0 * a.cos(), 32.0 + 9.0 * a.sin())
+        })
+        .collect();
+    let (a2, centroid) = topocontour::geometry::area2_centroid(&ring);
+    let mut new = old.clone();
+    new.objects = vec![topocontour::track::TrackedObject {
+        track: keep,
+        ring,
+        area: 0.5 * a2.abs(),
+        centroid,
+    }];
+    let resumed = |memory: Option<topocontour::track::Memory>| {
+        let mut r = Tracker::resume(
+            settings.clone(),
+            tracker.lineage().clone(),
+            &new,
+            W,
+            H,
+            memory,
+        );
+        r.set_previous(movie[2].clone());
+        run_on(r, &movie[3..])
+    };
+    let (after, lineage) = resumed(Some(tracker.memory().corrected(&old, &new, W, H)));
+    for f in &after {
+        let tracks: Vec<u32> = f.objects.iter().map(|o| o.track).collect();
+        assert_eq!(tracks, [keep], "frame {}: {lineage}", f.frame);
+    }
+    let (_, forgot) = resumed(None);
+    assert!(
+        forgot.lines().any(|l| l.ends_with(&format!(" {keep}"))),
+        "without the join remembered they divide: {forgot}"
+    );
+}
+
 /// A deleted nucleus whose daughters are pushed apart between two frames stays deleted:
 /// they are taken as its own, as its daughters would have been, not as new cells.
 #[test]

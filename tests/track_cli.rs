@@ -452,6 +452,12 @@ fn a_division_the_next_frame_takes_back_is_written_as_one_cell() {
         .collect();
     assert_eq!(frame3.len(), 1, "{rows}");
     assert!(frame3[0].starts_with("1,3,"), "{rows}");
+    // Its area is the mask's: the pixels labelled 1.
+    let pixels = mask.pixels().filter(|p| p.0[0] == 1).count();
+    assert_eq!(
+        frame3[0].split(',').nth(2),
+        Some(format!("{pixels}.00").as_str())
+    );
 }
 
 /// A `--ctc` folder is made, but not a tree of them: its own folder must exist, as a file
@@ -499,6 +505,46 @@ fn cells_covering_most_of_frame_0_suggest_the_other_object() {
     let right = run("bright");
     assert!(!right.contains("note"), "{right}");
     assert!(right.contains("1 track, 0 divisions"), "{right}");
+}
+
+/// A later frame whose cells cover most of it is said once, with what to check: a bright
+/// cell that spreads over the frame from frame 2 on.
+#[test]
+fn cells_covering_most_of_a_later_frame_are_said() {
+    let m = tmp("crowded.tif");
+    let mut enc = TiffEncoder::new(std::fs::File::create(&*m).unwrap()).unwrap();
+    let (w, h) = (80u32, 64u32);
+    for t in 0..4 {
+        let data: Vec<u16> = (0..w * h)
+            .map(|i| {
+                let (x, y) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
+                let inside = if t < 2 {
+                    (x - 40.0).hypot(y - 32.0) < 12.0
+                } else {
+                    x > 2.0 && x < 78.0 && y > 2.0 && y < 62.0
+                };
+                if inside {
+                    260
+                } else {
+                    100
+                }
+            })
+            .collect();
+        enc.write_image::<Gray16>(w, h, &data).unwrap();
+    }
+    drop(enc);
+    let notes = notes_of(&m, &["--object", "bright"]);
+    assert!(
+        notes.contains("note: frame 2's cells cover")
+            && notes
+                .contains("the background is being cut into cells; check --object and --modality"),
+        "{notes}"
+    );
+    assert_eq!(
+        notes.matches("cells cover").count(),
+        1,
+        "said once: {notes}"
+    );
 }
 
 /// Dark cells in a bright halo tracked as generic images: the run says they look like

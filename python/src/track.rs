@@ -138,8 +138,8 @@ fn run(
     if let Some((raw, before)) = last {
         labels.extend(topocontour::image::widen::to_edges(&raw, &before));
     }
-    for frame in &kept {
-        csv.push_str(&ctc::csv_rows(frame, tracker.lineage()));
+    for (frame, mask) in kept.iter().zip(labels.chunks_exact(w * h)) {
+        csv.push_str(&ctc::csv_rows(frame.frame, mask, w, tracker.lineage()));
     }
     Ok(Tracks {
         name,

@@ -85,6 +85,15 @@ pub struct ImageStack {
 }
 
 impl Document {
+    /// Whether the user's shapes are drawn: not on a tracked movie frame after frame 0,
+    /// since they started frame 0 (drawn where the cells were then, they looked like
+    /// cells that are not there).
+    pub fn shapes_shown(&self) -> bool {
+        self.movie
+            .as_ref()
+            .is_none_or(|m| m.frame == 0 || m.tracked_frame().is_none())
+    }
+
     /// A document on `field` named `name`, with default settings and the image's own
     /// contrast window.
     pub fn of_image(field: Field, name: String) -> Self {

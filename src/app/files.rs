@@ -122,9 +122,12 @@ impl TopoApp {
                 Err(e) => self.status.error = Some(e),
             },
             Command::ExportDialog(kind) => {
-                // A movie's frame is exported alone: its number is in the name.
+                // A movie's frame is exported alone: its number is in the name; the
+                // tracked movie's CSV holds every frame: "tracks".
                 let mut stem = super::path_prompt::stem(&self.doc.image_name);
-                if let Some(m) = &self.doc.movie {
+                if kind == Format::Csv && self.exports_by_track(kind) {
+                    stem = format!("{stem}.tracks");
+                } else if let Some(m) = &self.doc.movie {
                     let digits = (m.movie.len() - 1).to_string().len().max(3);
                     stem = format!("{stem}.frame{:0digits$}", m.frame);
                 }
@@ -352,17 +355,21 @@ impl TopoApp {
         Ok(())
     }
 
+    /// Whether `format` exports the tracked movie frame on screen by track: a tracked
+    /// frame does; so too one open for correction (the correction is in the tracking),
+    /// but for the outlines, which the run on screen gives.
+    fn exports_by_track(&self, format: Format) -> bool {
+        self.doc.movie.as_ref().is_some_and(|m| {
+            m.tracked_frame().is_some()
+                && (self.doc.run.is_none()
+                    || (m.correcting.is_some() && matches!(format, Format::Csv | Format::Labels)))
+        })
+    }
+
     /// Writes the frame on screen (the evolver's state at it) to `path`.
     fn export(&mut self, format: Format, path: &Path) -> Result<(), AppError> {
         let doc = &self.doc;
-        // A tracked frame exports its cells by track; so too while it is open for
-        // correction (the correction is in the tracking), but for the outlines, which
-        // the run on screen gives.
-        let by_track = |m: &super::MovieDoc| {
-            doc.run.is_none()
-                || (m.correcting.is_some() && matches!(format, Format::Csv | Format::Labels))
-        };
-        if let Some(m) = doc.movie.as_ref().filter(|m| by_track(m)) {
+        if let Some(m) = doc.movie.as_ref().filter(|_| self.exports_by_track(format)) {
             if let Some(bytes) = self.tracked_export(format, path)? {
                 return super::movie::write_beside(&m.movie, path, bytes);
             }

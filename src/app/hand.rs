@@ -79,6 +79,19 @@ impl TopoApp {
         view.selected = view.selected.filter(|&i| i < self.doc.shapes.len());
         view.selected_contour = None;
         view.question = None;
+        // What the status bar said was of the document before (tracking taken up again
+        // says so after).
+        let what = if c == Command::Undo {
+            "undone"
+        } else {
+            "redone"
+        };
+        let tracked = (self.doc.movie.as_ref()).is_some_and(|m| m.tracking.is_some());
+        self.status.notify(if tracked {
+            format!("{what}: {}", self.tracking_summary(0, 0))
+        } else {
+            what.to_string()
+        });
         self.after_undo_tracking();
     }
 }

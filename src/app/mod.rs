@@ -114,7 +114,16 @@ impl TopoApp {
             app.view.prefs = p;
         }
         if let Some(p) = image {
-            app.apply_now(Command::OpenImage(p));
+            // A session saved from the app is opened as one: its image, shapes, run or
+            // tracking.
+            let session = p
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("json"));
+            app.apply_now(if session {
+                Command::OpenSession(p)
+            } else {
+                Command::OpenImage(p)
+            });
         }
         app
     }

@@ -60,7 +60,7 @@ pub struct Tracking {
     pub memory: HashMap<usize, Arc<Memory>>,
     /// What frame 0 suggests of the settings (dark cells in a bright halo on a generic
     /// image: phase contrast), said with the tracking's summary.
-    pub hint: Option<&'static str>,
+    pub hint: Option<String>,
     /// The tracker as Cancel stopped it after the last frame: Continue goes on with it,
     /// so a cancelled and continued tracking is the one that ran on. None after a
     /// correction (the frames after it start from the corrected contours).
@@ -316,6 +316,13 @@ impl TopoApp {
             m.frame = t;
             m.correcting = None;
         }
+        // Each frame is stretched on its own quantiles, and a colony's halo grows: frame
+        // 0's window showed a later frame's ground black. A window the user set stays.
+        let auto = (self.doc.image.as_deref())
+            .is_some_and(|was| self.doc.settings.contrast == super::auto_contrast(was));
+        if auto {
+            self.doc.settings.contrast = super::auto_contrast(&f);
+        }
         self.doc.image = Some(f);
     }
 
@@ -508,9 +515,17 @@ impl TopoApp {
                     if let Some(tr) = tracking_with(&mut self.doc, job.tracking) {
                         if t == 0 && generic_dark {
                             let labels = f.label_raster(image.width, image.height);
-                            tr.hint = crate::image::modality::looks_haloed(&image, &labels).then_some(
-                                "the cells wear a bright halo, as in phase contrast: choose image: phase-contrast and Track again",
-                            );
+                            tr.hint = crate::image::modality::looks_haloed(&image, &labels).then(|| {
+                                "the cells wear a bright halo, as in phase contrast: choose image: phase-contrast and Track again".into()
+                            });
+                        }
+                        // Cells over most of a frame: the background cut into cells.
+                        let covered = f.covered(image.width, image.height);
+                        if tr.hint.is_none() && covered > crate::track::CROWDED_SHARE {
+                            tr.hint = Some(format!(
+                                "frame {t}'s cells cover {:.0}% of it: the background is being cut into cells; check Dark/Bright objects and the image kind (phase contrast?)",
+                                100.0 * covered
+                            ));
                         }
                         tr.frames.truncate(t);
                         tr.memory.retain(|&k, _| k < t);
@@ -565,7 +580,8 @@ impl TopoApp {
         }
     }
 
-    fn tracking_summary(&self, done: usize, total: usize) -> String {
+    /// The status line of the tracking on screen (`done` of `total` frames without one).
+    pub(super) fn tracking_summary(&self, done: usize, total: usize) -> String {
         let m = self.doc.movie.as_ref();
         let Some((tr, len)) = m.and_then(|m| m.tracking.as_ref().map(|t| (t, m.movie.len())))
         else {
@@ -576,7 +592,7 @@ impl TopoApp {
         let stopped = if n < len { " (stopped)" } else { "" };
         let tracks = tr.lineage.tracks().len();
         let s = |n: usize| if n == 1 { "" } else { "s" };
-        let hint = tr.hint.map_or(String::new(), |h| format!("; {h}"));
+        let hint = tr.hint.as_ref().map_or(String::new(), |h| format!("; {h}"));
         format!(
             "tracked {n} of {len} frames{stopped}: {tracks} track{}, {divisions} division{}{hint}",
             s(tracks),
@@ -762,9 +778,15 @@ impl TopoApp {
         };
         match format {
             crate::io::Format::Csv => {
+                // By the masks, as the label images give the cells: each frame's image
+                // is read again for the cells' edges.
                 let mut csv = String::from(ctc::CSV_HEADER);
-                for f in &tr.frames {
-                    csv.push_str(&ctc::csv_rows(f, &tr.lineage));
+                let frames = m.movie.frames().map_err(|e| super::AppError::Movie(e.to_string()))?;
+                for (f, image) in tr.frames.iter().zip(frames) {
+                    let image = image.map_err(|e| super::AppError::Movie(e.to_string()))?;
+                    let (w, h) = (image.width, image.height);
+                    let labels = crate::image::widen::to_edges(&f.label_raster(w, h), &image);
+                    csv.push_str(&ctc::csv_rows(f.frame, &labels, w, &tr.lineage));
                 }
                 Ok(Some(csv.into_bytes()))
             }

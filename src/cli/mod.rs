@@ -39,7 +39,7 @@ pub struct Cli {
     /// The subcommand; none opens the desktop app.
     #[command(subcommand)]
     pub command: Option<Command>,
-    /// An image to open in the desktop app.
+    /// An image, or a session saved from the app (`.json`), to open in the desktop app.
     pub image: Option<PathBuf>,
 }
 

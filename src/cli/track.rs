@@ -154,23 +154,31 @@ pub fn tracker_for(a: &TrackArgs, w: usize, h: usize) -> Result<Tracker, Failure
     Ok(Tracker::new(settings, init))
 }
 
-/// Frame 0's cells covering more than this share of the frame are said, with the other
-/// `--object` as the likely fix: cells found with the wrong polarity are the background
-/// cut into regions (0.92 of a synthetic nuclei movie tracked as dark, against 0.02–0.23
-/// of the frames of a dense real bacteria colony tracked right).
-pub const WRONG_OBJECT_SHARE: f64 = 0.8;
-
 /// The note for frame 0's `labels` when its cells cover most of the frame
-/// ([`WRONG_OBJECT_SHARE`]).
+/// ([`crate::track::CROWDED_SHARE`]), with the other `--object` as the likely fix.
 fn object_hint(labels: &[u32], object: Polarity) -> Option<String> {
     let covered = labels.iter().filter(|&&l| l != 0).count() as f64 / labels.len().max(1) as f64;
     let (given, other) = match object {
         Polarity::Dark => ("darker", "bright"),
         Polarity::Bright => ("brighter", "dark"),
     };
-    (covered > WRONG_OBJECT_SHARE).then(|| {
+    (covered > crate::track::CROWDED_SHARE).then(|| {
         format!(
             "note: frame 0's cells cover {:.0}% of it; if the cells are not {given} than their background, give --object {other}",
+            100.0 * covered
+        )
+    })
+}
+
+/// The note when a later frame's cells cover most of it (the first such frame, once):
+/// the background is being cut into cells, as a phase-contrast movie tracked as generic
+/// does once its halo spreads.
+fn crowded_hint(frame: &TrackedFrame, w: usize, h: usize) -> Option<String> {
+    let covered = frame.covered(w, h);
+    (covered > crate::track::CROWDED_SHARE).then(|| {
+        format!(
+            "note: frame {}'s cells cover {:.0}% of it: the background is being cut into cells; check --object and --modality (phase contrast: --modality phase-contrast)",
+            frame.frame,
             100.0 * covered
         )
     })
@@ -206,6 +214,8 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
     // written as a whole result (masks with their res_track.txt), as a batch summarises.
     super::signals::stop_gently();
     let mut tracked = 0;
+    // The note that the cells cover most of a frame is given once.
+    let mut crowded_said = false;
     for image in movie.frames().map_err(|e| bad(e.to_string()))? {
         if super::signals::stop_asked() {
             break;
@@ -216,11 +226,18 @@ pub fn track(a: &TrackArgs) -> Result<(), Failure> {
         if frame.frame == 0 {
             if let Some(hint) = object_hint(tracker.labels(), a.object) {
                 note(&hint);
+                crowded_said = true;
             }
             if (a.object, a.modality) == (Polarity::Dark, Modality::Generic)
                 && crate::image::modality::looks_haloed(&image, tracker.labels())
             {
                 note("note: the cells wear a bright halo, as in phase contrast; --modality phase-contrast reads the halo as background and drops specks far smaller than the cells");
+            }
+        }
+        if !crowded_said && frame.frame > 0 {
+            if let Some(hint) = crowded_hint(&frame, w, h) {
+                note(&hint);
+                crowded_said = true;
             }
         }
         if let Some(mut before) = held.take() {
@@ -333,9 +350,11 @@ impl Out<'_> {
     /// Writes one frame: its mask, its overlay if asked, its CSV rows.
     fn write(&mut self, held: &Held, lineage: &Lineage) -> Result<(), Failure> {
         let (a, (w, h), t) = (self.a, self.size, held.frame.frame);
-        if let Some(dir) = &self.plan.ctc {
-            let labels = crate::image::widen::to_edges(&held.labels, &held.image);
-            let bytes = ctc::label_image(&labels, w, h, true)
+        // The masks, as the label images and the CSV give the cells.
+        let labels = (self.plan.ctc.is_some() || a.tracks_csv.is_some())
+            .then(|| crate::image::widen::to_edges(&held.labels, &held.image));
+        if let (Some(dir), Some(labels)) = (&self.plan.ctc, &labels) {
+            let bytes = ctc::label_image(labels, w, h, true)
                 .ok_or_else(|| bad("more than 65,535 tracks for 16-bit label images"))?;
             // An earlier result's res_track.txt would describe masks this run replaces
             // one by one (and, killed, leaves mixed): it goes before the first mask and
@@ -357,8 +376,8 @@ impl Out<'_> {
                 write(&path, &ctc::png(&rgb, ow, oh))?;
             }
         }
-        if a.tracks_csv.is_some() {
-            self.csv.push_str(&ctc::csv_rows(&held.frame, lineage));
+        if let (Some(_), Some(labels)) = (&a.tracks_csv, &labels) {
+            self.csv.push_str(&ctc::csv_rows(t, labels, w, lineage));
         }
         Ok(())
     }

@@ -95,6 +95,9 @@ pub enum SessionError {
     /// Not JSON of a session, or of another version.
     #[error("{0} is not a topocontour session: {1}")]
     Format(PathBuf, String),
+    /// The app's tracking of a movie, not a still image's session.
+    #[error("{0} is the tracking of a movie: the app opens it (topocontour FILE); this takes the session of a still image")]
+    Tracking(PathBuf),
     /// The image cannot be read.
     #[error("cannot read the session's image {0}: {1}")]
     Image(PathBuf, String),
@@ -271,7 +274,16 @@ impl Session {
     pub fn parse(bytes: &[u8], path: &Path) -> Result<Self, SessionError> {
         let refused = |why: String| SessionError::Format(path.into(), why);
         let text = std::str::from_utf8(bytes).map_err(|_| refused("not UTF-8 text".into()))?;
-        let s: Session = serde_json::from_str(text).map_err(|e| refused(e.to_string()))?;
+        let s: Session = serde_json::from_str(text).map_err(|e| {
+            // The app saves the tracking of a movie as a session of its own.
+            let movie = serde_json::from_str::<serde_json::Value>(text)
+                .is_ok_and(|v| v.get("movie").is_some());
+            if movie {
+                SessionError::Tracking(path.into())
+            } else {
+                refused(e.to_string())
+            }
+        })?;
         if s.format != FORMAT || s.version != VERSION {
             return Err(SessionError::Format(
                 path.into(),

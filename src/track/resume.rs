@@ -49,6 +49,7 @@ pub struct Memory {
     apart: Vec<Division>,
     necks: HashMap<u32, (Neck, Option<f64>)>,
     born: HashMap<u32, Size>,
+    joined: HashSet<u32>,
     unwanted: Vec<Vec<Point>>,
 }
 
@@ -61,6 +62,7 @@ impl Default for Memory {
             apart: Vec::new(),
             necks: HashMap::new(),
             born: HashMap::new(),
+            joined: HashSet::new(),
             unwanted: Vec::new(),
         }
     }
@@ -74,7 +76,11 @@ impl Memory {
     /// within [`SAME_CELL`] (a run
     /// opened for correction puts points on the outline's edges, which moves neither).
     /// The outlines of the cells the correction deleted ([`DELETED_COVER`]) join the
-    /// places no new cell is taken (the frames are `width`×`height`).
+    /// places no new cell is taken (the frames are `width`×`height`). A cell the
+    /// correction joined others into (their tracks gone, their pixels covered by it)
+    /// holds together as one cell until it has grown by [`super::MIN_GROWTH`], as a
+    /// cell just born does: a join made by hand came apart again at the next frame,
+    /// as a new division.
     pub fn corrected(
         &self,
         old: &TrackedFrame,
@@ -95,19 +101,41 @@ impl Memory {
             _ => false,
         };
         let covered = new.label_raster(width, height);
-        let deleted = old.objects.iter().filter(|o| {
+        let mut unwanted = self.unwanted.clone();
+        let mut joined = self.joined.clone();
+        let mut born: HashMap<u32, Size> = (self.born.iter())
+            .filter(|(k, _)| kept(**k))
+            .map(|(k, v)| (*k, *v))
+            .collect();
+        for o in &old.objects {
             if new.objects.iter().any(|n| n.track == o.track) {
-                return false;
+                continue;
             }
-            let (mut all, mut under) = (0usize, 0usize);
+            // The corrected cells over the gone cell's pixels, by track.
+            let mut under: HashMap<u32, usize> = HashMap::new();
+            let mut all = 0usize;
             fill_even_odd(std::slice::from_ref(&o.ring), width, height, |i| {
                 all += 1;
-                under += usize::from(covered[i] != 0);
+                if covered[i] != 0 {
+                    *under.entry(covered[i]).or_default() += 1;
+                }
             });
-            all > 0 && (under as f64) < DELETED_COVER * all as f64
-        });
-        let mut unwanted = self.unwanted.clone();
-        unwanted.extend(deleted.map(|o| o.ring.clone()));
+            let on: usize = under.values().sum();
+            if all == 0 {
+                continue;
+            }
+            if (on as f64) < DELETED_COVER * all as f64 {
+                unwanted.push(o.ring.clone());
+            } else if let Some((&k, _)) = under
+                .iter()
+                .max_by_key(|(k, n)| (**n, std::cmp::Reverse(**k)))
+            {
+                if let Some(cell) = new.objects.iter().find(|n| n.track == k) {
+                    joined.insert(k);
+                    born.insert(k, Size::of([cell]));
+                }
+            }
+        }
         // Built field by field: cloning the whole memory would copy the necks' lobes only
         // to drop them.
         Memory {
@@ -116,10 +144,8 @@ impl Memory {
             look_residual: self.look_residual,
             apart: Vec::new(),
             necks: HashMap::new(),
-            born: (self.born.iter())
-                .filter(|(k, _)| kept(**k))
-                .map(|(k, v)| (*k, *v))
-                .collect(),
+            born,
+            joined,
             unwanted,
         }
     }
@@ -207,6 +233,7 @@ impl Tracker {
             apart: self.apart.clone(),
             necks: self.necks.clone(),
             born: self.born.clone(),
+            joined: self.joined.clone(),
             unwanted: self.unwanted.clone(),
         }
     }
@@ -239,6 +266,7 @@ impl Tracker {
         t.apart = m.apart;
         t.necks = m.necks;
         t.born = m.born;
+        t.joined = m.joined;
         t.unwanted = m.unwanted;
         t
     }

@@ -211,8 +211,12 @@ pub(super) fn motion_layer(cx: &Ctx, painter: &egui::Painter, view: View) {
     }
 }
 
-/// The user's shapes, the selected one highlighted.
+/// The user's shapes, the selected one highlighted, when on screen
+/// ([`crate::app::Document::shapes_shown`]).
 pub(super) fn shapes_layer(cx: &Ctx, painter: &egui::Painter, view: View) {
+    if !cx.doc.shapes_shown() {
+        return;
+    }
     for (i, s) in cx.doc.shapes.iter().enumerate() {
         let sel = cx.view.selected == Some(i);
         let stroke = Stroke::new(

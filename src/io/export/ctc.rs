@@ -69,29 +69,34 @@ pub fn label_image(labels: &[u32], width: usize, height: usize, tiff: bool) -> O
 /// The CSV header of [`csv_rows`].
 pub const CSV_HEADER: &str = "track,frame,area_px,centroid_x,centroid_y,parent\n";
 
-/// One row per cell of `frame`: track, frame, area, centroid, parent track (0: none). A
-/// cell seen in two pieces (sisters taken back: [`TrackedFrame::revise`]) is one row,
-/// its area the pieces' sum and its centroid theirs.
-pub fn csv_rows(frame: &TrackedFrame, lineage: &Lineage) -> String {
-    let mut rows: Vec<(u32, f64, f64, f64)> = Vec::new();
-    for o in &frame.objects {
-        let (x, y) = (o.area * o.centroid.x, o.area * o.centroid.y);
-        match rows.last_mut().filter(|r| r.0 == o.track) {
-            Some(r) => (r.1, r.2, r.3) = (r.1 + o.area, r.2 + x, r.3 + y),
-            None => rows.push((o.track, o.area, x, y)),
+/// One row per cell of frame `frame`, from its mask `labels` (`width` wide, track labels,
+/// 0 outside), as the label image holds it: track, frame, area (the cell's pixels),
+/// centroid (of its pixels' centres), parent track (0: none). From the mask, not the
+/// outline, so the CSV and the masks give a cell one size: the masks reach to the cells'
+/// edges ([`crate::image::widen::to_edges`]), and a growth rate read from the outline's
+/// area was 20–35 % below the mask's on a phase-contrast colony.
+pub fn csv_rows(frame: usize, labels: &[u32], width: usize, lineage: &Lineage) -> String {
+    let mut sums: std::collections::BTreeMap<u32, (usize, f64, f64)> = Default::default();
+    for (i, &l) in labels.iter().enumerate() {
+        if l != 0 {
+            let e = sums.entry(l).or_default();
+            e.0 += 1;
+            e.1 += (i % width) as f64 + 0.5;
+            e.2 += (i / width) as f64 + 0.5;
         }
     }
-    rows.into_iter()
-        .map(|(track, area, x, y)| {
+    sums.into_iter()
+        .map(|(track, (n, x, y))| {
             let parent = lineage.get(track).map_or(0, |t| t.parent);
-            let (cx, cy) = if area > 0.0 {
-                (x / area, y / area)
-            } else {
-                (0.0, 0.0)
-            };
+            let n = n as f64;
             format!(
                 "{},{},{:.2},{:.3},{:.3},{}\n",
-                track, frame.frame, area, cx, cy, parent
+                track,
+                frame,
+                n,
+                x / n,
+                y / n,
+                parent
             )
         })
         .collect()
