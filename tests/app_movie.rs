@@ -1052,6 +1052,12 @@ fn a_frame_being_corrected_shows_its_cells_by_track() {
         assert!(o.centroid.dist(c) < 0.5, "track {k} where it was tracked");
     }
     h.get_by_label_contains("2 cells in movie frame 4, being corrected");
+    // A cell clicked is measured under its track's number.
+    let (k, c) = cells(&h)[0];
+    let at = h.state().screen_from_image(c);
+    click_at(&mut h, at);
+    h.step();
+    h.get_by_label_contains(&format!("track {k}: area"));
     click_label(&mut h, "Brush");
     h.step();
     drag(&mut h, Point::new(38.0, 32.0), Point::new(60.0, 32.0));

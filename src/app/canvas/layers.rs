@@ -260,9 +260,13 @@ pub(super) fn shapes_layer(cx: &Ctx, painter: &egui::Painter, view: View) {
     }
 }
 
+/// A frame with at most this many divisions says each in words beside its ring.
+const SAID_DIVISIONS: usize = 3;
+
 /// The tracks of the movie frame on screen, each outline in its track's colour (the same
-/// in every frame) with its label; the daughters of a division in this frame ringed, the
-/// selected track under a white halo.
+/// in every frame) with its label; the daughters of a division in this frame ringed (and
+/// the division said in words, on a busy frame only the selected track's), the selected
+/// track under a white halo.
 pub(super) fn tracks_layer(cx: &Ctx, painter: &egui::Painter, view: View) {
     let Some(frame) = cx.doc.movie.as_ref().and_then(|m| m.tracked_frame()) else {
         return;
@@ -282,6 +286,9 @@ pub(super) fn tracks_layer(cx: &Ctx, painter: &egui::Painter, view: View) {
         track_number(painter, view.to_screen(o.centroid), o.track, &font, colour);
     }
     let magenta = Stroke::new(2.5, Color32::from_rgb(255, 40, 200));
+    // A busy frame's sentences covered the colony: then only the selected track's
+    // division is said (the event log lists them all).
+    let say_all = frame.divisions.len() <= SAID_DIVISIONS;
     for d in &frame.divisions {
         let at: Vec<Point> = frame
             .objects
@@ -293,6 +300,13 @@ pub(super) fn tracks_layer(cx: &Ctx, painter: &egui::Painter, view: View) {
             let c = (a + b) * 0.5;
             let r = (a.dist(b) * 0.5 + 18.0) as f32 * view.zoom;
             painter.circle_stroke(view.to_screen(c), r, magenta);
+            let selected = cx
+                .view
+                .selected_track
+                .is_some_and(|k| k == d.parent || d.children.contains(&k));
+            if !(say_all || selected) {
+                continue;
+            }
             painter.text(
                 view.to_screen(c) + Vec2::new(0.0, -r - 8.0),
                 egui::Align2::CENTER_BOTTOM,

@@ -72,9 +72,17 @@ fn figures_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
         let p: f64 = (0..r.points.len())
             .map(|i| r.points[i].dist(r.points[(i + 1) % r.points.len()]))
             .sum();
+        // On a frame being corrected, the cell by the track it keeps, as the canvas and
+        // the table name it.
+        let track = (cx.view.correction_tracks.get(cx.doc))
+            .and_then(|t| t.get(&r.id).map(|&(k, _)| k))
+            .filter(|_| !r.hole);
+        let name = match track {
+            Some(k) => format!("track {k}"),
+            None => format!("contour {}", r.id),
+        };
         ui.label(format!(
-            "contour {}{}: area {a:.1} px², perimeter {p:.1} px, circularity {:.3}",
-            r.id,
+            "{name}{}: area {a:.1} px², perimeter {p:.1} px, circularity {:.3}",
             if r.hole { " (hole)" } else { "" },
             4.0 * std::f64::consts::PI * a / (p * p).max(1e-9)
         ));
