@@ -963,6 +963,22 @@ fn eventful() -> Vec<Field> {
         .collect()
 }
 
+/// [`eventful`], its settings (bright cells), and a tracker that tracked frames 0–3 of it
+/// with those frames.
+fn eventful_to_frame_3() -> (Vec<Field>, TrackSettings, Tracker, Vec<TrackedFrame>) {
+    let movie = eventful();
+    let settings = TrackSettings::new(Params {
+        polarity: Polarity::Bright,
+        ..Params::default()
+    });
+    let mut tracker = Tracker::new(settings.clone(), Vec::new());
+    let frames = movie[..4]
+        .iter()
+        .map(|f| tracker.step(f).unwrap())
+        .collect();
+    (movie, settings, tracker, frames)
+}
+
 /// The frames a tracker gives for `movie` from `tracker` on, each as the next revised it,
 /// and the lineage at the end.
 fn run_on(mut tracker: Tracker, movie: &[Field]) -> (Vec<TrackedFrame>, String) {
@@ -1122,16 +1138,7 @@ fn a_cell_deleted_by_hand_is_not_found_again_and_new_cells_elsewhere_are() {
 /// pushed apart from where the mother was included), and the cells around go on.
 #[test]
 fn a_deleted_cell_that_divides_stays_deleted_with_its_daughters() {
-    let movie = eventful();
-    let settings = TrackSettings::new(Params {
-        polarity: Polarity::Bright,
-        ..Params::default()
-    });
-    let mut tracker = Tracker::new(settings.clone(), Vec::new());
-    let mut frames = Vec::new();
-    for f in &movie[..4] {
-        frames.push(tracker.step(f).unwrap());
-    }
+    let (movie, settings, tracker, frames) = eventful_to_frame_3();
     let (first, _) = run_on(tracker.clone(), &movie[4..]);
     // The rod about (48, 40), dividing at frame 6 into sisters pushed apart.
     let old = frames[3].clone();
@@ -1182,16 +1189,7 @@ fn a_deleted_cell_that_divides_stays_deleted_with_its_daughters() {
 /// daughters away; numbered on, the cell appearing later took a daughter's number.
 #[test]
 fn cells_tracked_again_after_a_correction_keep_their_numbers() {
-    let movie = eventful();
-    let settings = TrackSettings::new(Params {
-        polarity: Polarity::Bright,
-        ..Params::default()
-    });
-    let mut tracker = Tracker::new(settings.clone(), Vec::new());
-    let mut frames = Vec::new();
-    for f in &movie[..4] {
-        frames.push(tracker.step(f).unwrap());
-    }
+    let (movie, settings, tracker, frames) = eventful_to_frame_3();
     let mut on = tracker.clone();
     let first: Vec<Arc<TrackedFrame>> = movie[4..]
         .iter()

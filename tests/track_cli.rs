@@ -32,6 +32,23 @@ fn movie(path: &Path, sizes: &[(u32, u32)]) {
     }
 }
 
+/// A 16-bit TIFF movie of `frames` pages of `w`×`h`, pixel (x, y) of page t drawn
+/// `value(t, x, y)` at its centre.
+fn drawn_movie(
+    path: &Path,
+    (w, h): (u32, u32),
+    frames: usize,
+    value: impl Fn(usize, f64, f64) -> u16,
+) {
+    let mut enc = TiffEncoder::new(std::fs::File::create(path).unwrap()).unwrap();
+    for t in 0..frames {
+        let data: Vec<u16> = (0..w * h)
+            .map(|i| value(t, (i % w) as f64 + 0.5, (i / w) as f64 + 0.5))
+            .collect();
+        enc.write_image::<Gray16>(w, h, &data).unwrap();
+    }
+}
+
 fn track(movie: &Path, out: &Path) -> std::process::Output {
     track_with(movie, out, &[])
 }
@@ -512,27 +529,18 @@ fn cells_covering_most_of_frame_0_suggest_the_other_object() {
 #[test]
 fn cells_covering_most_of_a_later_frame_are_said() {
     let m = tmp("crowded.tif");
-    let mut enc = TiffEncoder::new(std::fs::File::create(&*m).unwrap()).unwrap();
-    let (w, h) = (80u32, 64u32);
-    for t in 0..4 {
-        let data: Vec<u16> = (0..w * h)
-            .map(|i| {
-                let (x, y) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
-                let inside = if t < 2 {
-                    (x - 40.0).hypot(y - 32.0) < 12.0
-                } else {
-                    x > 2.0 && x < 78.0 && y > 2.0 && y < 62.0
-                };
-                if inside {
-                    260
-                } else {
-                    100
-                }
-            })
-            .collect();
-        enc.write_image::<Gray16>(w, h, &data).unwrap();
-    }
-    drop(enc);
+    drawn_movie(&m, (80, 64), 4, |t, x, y| {
+        let inside = if t < 2 {
+            (x - 40.0).hypot(y - 32.0) < 12.0
+        } else {
+            x > 2.0 && x < 78.0 && y > 2.0 && y < 62.0
+        };
+        if inside {
+            260
+        } else {
+            100
+        }
+    });
     let notes = notes_of(&m, &["--object", "bright"]);
     assert!(
         notes.contains("note: frame 2's cells cover")
@@ -552,25 +560,17 @@ fn cells_covering_most_of_a_later_frame_are_said() {
 #[test]
 fn dark_cells_in_a_bright_halo_suggest_phase_contrast() {
     let m = tmp("halo.tif");
-    let mut enc = TiffEncoder::new(std::fs::File::create(&*m).unwrap()).unwrap();
-    let (w, h) = (96u32, 80u32);
-    for t in 0..3 {
-        let data: Vec<u16> = (0..w * h)
-            .map(|i| {
-                let (x, y) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
-                let d = [(30.0 + t as f64, 30.0), (64.0, 50.0 - t as f64)]
-                    .iter()
-                    .map(|&(cx, cy)| (x - cx).hypot(y - cy))
-                    .fold(f64::INFINITY, f64::min);
-                match d {
-                    d if d < 9.0 => 300,
-                    d if d < 11.0 => 1500,
-                    _ => 1000,
-                }
-            })
-            .collect();
-        enc.write_image::<Gray16>(w, h, &data).unwrap();
-    }
+    drawn_movie(&m, (96, 80), 3, |t, x, y| {
+        let d = [(30.0 + t as f64, 30.0), (64.0, 50.0 - t as f64)]
+            .iter()
+            .map(|&(cx, cy)| (x - cx).hypot(y - cy))
+            .fold(f64::INFINITY, f64::min);
+        match d {
+            d if d < 9.0 => 300,
+            d if d < 11.0 => 1500,
+            _ => 1000,
+        }
+    });
     let run = |modality: &str| notes_of(&m, &["--object", "dark", "--modality", modality]);
     let generic = run("generic");
     assert!(
