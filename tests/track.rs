@@ -963,19 +963,25 @@ fn eventful() -> Vec<Field> {
         .collect()
 }
 
-/// [`eventful`], its settings (bright cells), and a tracker that tracked frames 0–3 of it
+/// Settings for bright cells, and a tracker that tracked the first `n` frames of `movie`
 /// with those frames.
-fn eventful_to_frame_3() -> (Vec<Field>, TrackSettings, Tracker, Vec<TrackedFrame>) {
-    let movie = eventful();
+fn bright_tracked(movie: &[Field], n: usize) -> (TrackSettings, Tracker, Vec<TrackedFrame>) {
     let settings = TrackSettings::new(Params {
         polarity: Polarity::Bright,
         ..Params::default()
     });
     let mut tracker = Tracker::new(settings.clone(), Vec::new());
-    let frames = movie[..4]
+    let frames = movie[..n]
         .iter()
         .map(|f| tracker.step(f).unwrap())
         .collect();
+    (settings, tracker, frames)
+}
+
+/// [`eventful`], and [`bright_tracked`] to frame 3.
+fn eventful_to_frame_3() -> (Vec<Field>, TrackSettings, Tracker, Vec<TrackedFrame>) {
+    let movie = eventful();
+    let (settings, tracker, frames) = bright_tracked(&movie, 4);
     (movie, settings, tracker, frames)
 }
 
@@ -1090,15 +1096,7 @@ fn a_cell_deleted_by_hand_is_not_found_again_and_new_cells_elsewhere_are() {
             blurred(frame(&cells))
         })
         .collect();
-    let settings = TrackSettings::new(Params {
-        polarity: Polarity::Bright,
-        ..Params::default()
-    });
-    let mut tracker = Tracker::new(settings.clone(), Vec::new());
-    let mut frames = Vec::new();
-    for f in &movie[..3] {
-        frames.push(tracker.step(f).unwrap());
-    }
+    let (settings, tracker, frames) = bright_tracked(&movie, 3);
     let near = |o: &topocontour::track::TrackedObject, x: f64, y: f64| {
         o.centroid.dist(Point::new(x, y)) < 5.0
     };
@@ -1261,15 +1259,7 @@ fn cells_joined_by_hand_stay_one_while_they_touch() {
             blurred(frame(&[disk(x, 32.0, 8.0), disk(x + 19.0, 32.0, 8.0)]))
         })
         .collect();
-    let settings = TrackSettings::new(Params {
-        polarity: Polarity::Bright,
-        ..Params::default()
-    });
-    let mut tracker = Tracker::new(settings.clone(), Vec::new());
-    let mut frames = Vec::new();
-    for f in &movie[..3] {
-        frames.push(tracker.step(f).unwrap());
-    }
+    let (settings, tracker, frames) = bright_tracked(&movie, 3);
     let old = frames[2].clone();
     assert_eq!(old.objects.len(), 2, "two cells found");
     // Joined at frame 2: one outline round both, the left one's track.
