@@ -163,8 +163,23 @@ impl TopoApp {
         m.correcting = Some((t, edits));
         let tr = m.tracking.as_mut().expect("checked");
         tr.id = super::movie::next_tracking_id();
-        // The frames tracked again number their cells as these did.
-        let replaced = (tr.frames.split_off(t + 1), tr.lineage.clone());
+        // The frames tracked again number their cells as these did, and as the run an
+        // earlier correction replaced did beyond where its tracking again has reached.
+        let mut frames = tr.frames.split_off(t + 1);
+        let mut lineage_then = tr.lineage.clone();
+        if let Some(r) = tr.replaced.as_ref().filter(|_| !tr.complete) {
+            let reached = frames.last().map_or(t, |f| f.frame);
+            frames.extend(r.frames.iter().filter(|f| f.frame > reached).cloned());
+            // Tracks of either run: the earlier run's where this one has none.
+            for track in r.lineage.tracks() {
+                lineage_then.insert(*track);
+            }
+        }
+        let replaced = Arc::new(super::movie::Replaced {
+            frames,
+            lineage: lineage_then,
+        });
+        tr.replaced = Some(replaced.clone());
         tr.frames.truncate(t);
         tr.frames.push(frame.clone());
         // What the tracker knew after frame t (nothing, for a tracking reopened from its
@@ -185,8 +200,8 @@ impl TopoApp {
         let id = tr.id;
         match settings.filter(|_| t + 1 < len) {
             Some(s) => {
-                let tracker = Tracker::resume(s, lineage, &frame, w, h, Some(memory))
-                    .keeping_numbers(replaced.0, &replaced.1);
+                let tracker =
+                    replaced.numbering(Tracker::resume(s, lineage, &frame, w, h, Some(memory)));
                 self.spawn_tracking(tracker, t + 1, id);
                 self.status.notify(format!(
                     "frame {t} corrected ({summary}): frames {}–{} are tracked again from it",
@@ -432,7 +447,9 @@ pub fn corrected(
     }
     kept.sort_unstable();
     for &(label, k) in &kept {
-        label_of[k] = new.start_as(label, t, begins[k].unwrap_or(0));
+        // Began at t, so not among the tracks before it; labels need not rise with
+        // birth once a correction kept numbers.
+        label_of[k] = new.start_at(label, t, begins[k].unwrap_or(0));
     }
     // The others numbered on, left to right, after every track of the run: the tracks
     // begun after this frame keep their numbers when tracked again.
@@ -458,4 +475,55 @@ pub fn corrected(
     frame.objects.sort_by_key(|o| o.track);
     frame.divisions.sort_by_key(|d| d.parent);
     (frame, new)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::track::Track;
+
+    fn square(track: u32, x: f64) -> TrackedObject {
+        let ring = vec![
+            Point::new(x, 10.0),
+            Point::new(x + 8.0, 10.0),
+            Point::new(x + 8.0, 18.0),
+            Point::new(x, 18.0),
+        ];
+        TrackedObject {
+            track,
+            ring,
+            area: 64.0,
+            centroid: Point::new(x + 4.0, 14.0),
+        }
+    }
+
+    /// After a first correction labels no longer rise with birth: a cell begun at the
+    /// corrected frame keeps its number though a larger one (a cell a correction added
+    /// earlier) began before it (numbered on, track 4 became 10).
+    #[test]
+    fn a_second_correction_keeps_the_numbers_the_first_kept() {
+        let track = |label, first, parent| Track {
+            label,
+            first,
+            last: 6,
+            parent,
+        };
+        let lineage =
+            Lineage::from_tracks(vec![track(1, 0, 0), track(4, 5, 0), track(9, 2, 0)], 7).unwrap();
+        let old = TrackedFrame {
+            frame: 5,
+            objects: vec![square(1, 4.0), square(4, 24.0), square(9, 44.0)],
+            divisions: Vec::new(),
+            undone: Vec::new(),
+            earlier: Vec::new(),
+            evolution_frames: 0,
+        };
+        let cells: Vec<TrackedObject> =
+            old.objects.iter().map(|o| square(0, o.ring[0].x)).collect();
+        let (frame, new) = corrected(&old, &lineage, cells, 64, 32);
+        let tracks: Vec<u32> = frame.objects.iter().map(|o| o.track).collect();
+        assert_eq!(tracks, [1, 4, 9]);
+        assert_eq!(new.get(4).map(|t| (t.first, t.parent)), Some((5, 0)));
+        assert!(Lineage::from_tracks(new.tracks().to_vec(), 7).is_ok());
+    }
 }

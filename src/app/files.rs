@@ -226,8 +226,9 @@ impl TopoApp {
                 0 => String::new(),
                 n => format!(" and your corrections on {}", counted(n, "frame")),
             };
+            let verb = if corrected.is_empty() { "is" } else { "are" };
             return Some(format!(
-                "The tracking of {}{corrected} is not saved.",
+                "The tracking of {}{corrected} {verb} not saved.",
                 counted(tr.frames.len(), "frame")
             ));
         }

@@ -166,7 +166,7 @@ fn edit_keys(cx: &mut Ctx, ui: &egui::Ui) {
     if del {
         if let Some(id) = cx.view.selected_contour {
             cx.send(Command::DeleteContour(id));
-        } else if let Some(i) = cx.view.selected {
+        } else if let Some(i) = cx.view.selected.filter(|_| cx.doc.shapes_shown()) {
             cx.send(Command::DeleteShape(i));
         }
     }

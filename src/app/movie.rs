@@ -60,11 +60,32 @@ pub struct Tracking {
     pub memory: HashMap<usize, Arc<Memory>>,
     /// What frame 0 suggests of the settings (dark cells in a bright halo on a generic
     /// image: phase contrast), said with the tracking's summary.
-    pub hint: Option<String>,
+    pub hint: Option<(usize, String)>,
     /// The tracker as Cancel stopped it after the last frame: Continue goes on with it,
     /// so a cancelled and continued tracking is the one that ran on. None after a
     /// correction (the frames after it start from the corrected contours).
     pub stopped: Option<Arc<Tracker>>,
+    /// The run the last correction replaced (its frames after the corrected one, its
+    /// tracks): tracking resumed without the stopped tracker (Undo back to a re-tracking
+    /// in progress, a second correction before the first is tracked to the end) numbers
+    /// its cells as that run did ([`Tracker::keeping_numbers`]).
+    pub replaced: Option<Arc<Replaced>>,
+}
+
+/// The frames a correction replaced and their tracks.
+#[derive(Clone, Debug)]
+pub struct Replaced {
+    /// The frames after the corrected one, in order.
+    pub frames: Vec<Arc<TrackedFrame>>,
+    /// Their tracks.
+    pub lineage: Lineage,
+}
+
+impl Replaced {
+    /// `tracker`, numbering the cells it begins as this run did.
+    pub fn numbering(&self, tracker: Tracker) -> Tracker {
+        tracker.keeping_numbers(self.frames.iter().cloned(), &self.lineage)
+    }
 }
 
 /// A new [`Tracking::id`].
@@ -412,7 +433,11 @@ impl TopoApp {
             Some(t) => Arc::unwrap_or_clone(t),
             None => {
                 let memory = tr.memory.get(&last.frame).map(|m| Memory::clone(m));
-                Tracker::resume(settings.clone(), tr.lineage.clone(), &last, w, h, memory)
+                let t = Tracker::resume(settings.clone(), tr.lineage.clone(), &last, w, h, memory);
+                match &tr.replaced {
+                    Some(r) => r.numbering(t),
+                    None => t,
+                }
             }
         };
         let changed = TrackSettings::new(self.doc.params().clone()).params != settings.params;
@@ -513,18 +538,27 @@ impl TopoApp {
                     let generic_dark =
                         (p.polarity, p.modality) == (Polarity::Dark, Modality::Generic);
                     if let Some(tr) = tracking_with(&mut self.doc, job.tracking) {
+                        // A hint of this frame or a later one was of frames tracked
+                        // again now (after a correction).
+                        if tr.hint.as_ref().is_some_and(|(at, _)| *at >= t) {
+                            tr.hint = None;
+                        }
                         if t == 0 && generic_dark {
                             let labels = f.label_raster(image.width, image.height);
                             tr.hint = crate::image::modality::looks_haloed(&image, &labels).then(|| {
-                                "the cells wear a bright halo, as in phase contrast: choose image: phase-contrast and Track again".into()
+                                (0, "the cells wear a bright halo, as in phase contrast: choose image: phase-contrast and Track again".into())
                             });
                         }
                         // Cells over most of a frame: the background cut into cells.
                         let covered = f.covered(image.width, image.height);
                         if tr.hint.is_none() && covered > crate::track::CROWDED_SHARE {
-                            tr.hint = Some(format!(
-                                "frame {t}'s cells cover {:.0}% of it: the background is being cut into cells; check Dark/Bright objects and the image kind (phase contrast?)",
-                                100.0 * covered
+                            tr.hint = Some((
+                                t,
+                                crate::track::crowded_note(
+                                    t,
+                                    covered,
+                                    "Dark/Bright objects and the image kind (phase contrast?)",
+                                ),
                             ));
                         }
                         tr.frames.truncate(t);
@@ -592,7 +626,10 @@ impl TopoApp {
         let stopped = if n < len { " (stopped)" } else { "" };
         let tracks = tr.lineage.tracks().len();
         let s = |n: usize| if n == 1 { "" } else { "s" };
-        let hint = tr.hint.as_ref().map_or(String::new(), |h| format!("; {h}"));
+        let hint = tr
+            .hint
+            .as_ref()
+            .map_or(String::new(), |(_, h)| format!("; {h}"));
         format!(
             "tracked {n} of {len} frames{stopped}: {tracks} track{}, {divisions} division{}{hint}",
             s(tracks),
@@ -743,6 +780,7 @@ impl TopoApp {
                 corrected: s.corrected.into_iter().collect(),
                 running: false,
                 stopped: None,
+                replaced: None,
                 memory,
                 hint: None,
             });

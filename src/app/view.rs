@@ -84,7 +84,8 @@ pub struct ViewState {
     pub question: Option<Question>,
     /// The user chose to quit without saving: the window closes without asking again.
     pub quit_confirmed: bool,
-    /// The file to open once the user has answered [`Question::Open`].
+    /// The file asked to be opened over work not saved ([`Question::Open`]): opened if
+    /// the user answers Open without saving; after Save session… it is asked for again.
     pub pending_open: Option<super::Command>,
     /// The user chose to open it without saving.
     pub open_confirmed: bool,

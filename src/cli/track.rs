@@ -176,10 +176,10 @@ fn object_hint(labels: &[u32], object: Polarity) -> Option<String> {
 fn crowded_hint(frame: &TrackedFrame, w: usize, h: usize) -> Option<String> {
     let covered = frame.covered(w, h);
     (covered > crate::track::CROWDED_SHARE).then(|| {
+        let check = "--object and --modality (phase contrast: --modality phase-contrast)";
         format!(
-            "note: frame {}'s cells cover {:.0}% of it: the background is being cut into cells; check --object and --modality (phase contrast: --modality phase-contrast)",
-            frame.frame,
-            100.0 * covered
+            "note: {}",
+            crate::track::crowded_note(frame.frame, covered, check)
         )
     })
 }

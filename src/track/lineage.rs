@@ -61,33 +61,28 @@ impl Lineage {
         label
     }
 
-    /// A new track starting at `frame` labelled `label`, when no later label was given
-    /// (a corrected frame keeping the numbers of the tracks it began); else the next
-    /// label ([`Lineage::start`]). Returns its label.
-    pub fn start_as(&mut self, label: u32, frame: usize, parent: u32) -> u32 {
-        if label <= self.given {
-            return self.start(frame, parent);
-        }
-        self.given = label - 1;
-        self.start(frame, parent)
-    }
-
     /// A new track starting at `frame` labelled `label`, which no track has; labels given
     /// on follow the largest given. Returns `label`.
     pub fn start_at(&mut self, label: u32, frame: usize, parent: u32) -> u32 {
         debug_assert!(self.index(label).is_none(), "track {label} exists");
-        let k = self.tracks.partition_point(|t| t.label < label);
-        self.tracks.insert(
-            k,
-            Track {
-                label,
-                first: frame,
-                last: frame,
-                parent,
-            },
-        );
-        self.given = self.given.max(label);
+        self.insert(Track {
+            label,
+            first: frame,
+            last: frame,
+            parent,
+        });
         label
+    }
+
+    /// `track` as it is, unless a track has its label; labels given on follow the
+    /// largest given.
+    pub fn insert(&mut self, track: Track) {
+        if self.index(track.label).is_some() {
+            return;
+        }
+        let k = self.tracks.partition_point(|t| t.label < track.label);
+        self.tracks.insert(k, track);
+        self.given = self.given.max(track.label);
     }
 
     /// New labels follow `label` at least: the labels up to it stay free for

@@ -302,6 +302,15 @@ pub struct Earlier {
 /// right.
 pub const CROWDED_SHARE: f64 = 0.8;
 
+/// What to say of frame `frame` whose cells cover `covered` of it, naming the settings to
+/// `check` (the CLI's flags, the app's controls).
+pub fn crowded_note(frame: usize, covered: f64, check: &str) -> String {
+    format!(
+        "frame {frame}'s cells cover {:.0}% of it: the background is being cut into cells; check {check}",
+        100.0 * covered
+    )
+}
+
 impl TrackedFrame {
     /// The share of a `width`×`height` frame its cells cover (their outlines' areas).
     pub fn covered(&self, width: usize, height: usize) -> f64 {

@@ -77,10 +77,11 @@ impl Memory {
     /// opened for correction puts points on the outline's edges, which moves neither).
     /// The outlines of the cells the correction deleted ([`DELETED_COVER`]) join the
     /// places no new cell is taken (the frames are `width`×`height`). A cell the
-    /// correction joined others into (their tracks gone, their pixels covered by it)
-    /// holds together as one cell until it has grown by [`super::MIN_GROWTH`], as a
-    /// cell just born does: a join made by hand came apart again at the next frame,
-    /// as a new division.
+    /// correction joined others into (their tracks gone, their pixels covered by it: a
+    /// neighbour that took them in, or the mother of sisters made one again) holds
+    /// together as one cell until it has grown by [`super::MIN_GROWTH`], as a cell just
+    /// born does: a join made by hand came apart again at the next frame, as a new
+    /// division.
     pub fn corrected(
         &self,
         old: &TrackedFrame,
@@ -126,14 +127,28 @@ impl Memory {
             }
             if (on as f64) < DELETED_COVER * all as f64 {
                 unwanted.push(o.ring.clone());
-            } else if let Some((&k, _)) = under
+                continue;
+            }
+            // Joined into the cell over most of it: one that was there (a neighbour
+            // took it in) or the mother of its division (sisters made one again); not a
+            // cell the correction began (a cut's daughters, a cell drawn anew).
+            let Some((&k, _)) = under
                 .iter()
                 .max_by_key(|(k, n)| (**n, std::cmp::Reverse(**k)))
+            else {
+                continue;
+            };
+            let was_there = old.objects.iter().any(|c| c.track == k);
+            let its_mother =
+                (old.divisions.iter()).any(|d| d.parent == k && d.children.contains(&o.track));
+            if let Some(cell) = new
+                .objects
+                .iter()
+                .find(|n| n.track == k)
+                .filter(|_| was_there || its_mother)
             {
-                if let Some(cell) = new.objects.iter().find(|n| n.track == k) {
-                    joined.insert(k);
-                    born.insert(k, Size::of([cell]));
-                }
+                joined.insert(k);
+                born.insert(k, Size::of([cell]));
             }
         }
         // Built field by field: cloning the whole memory would copy the necks' lobes only

@@ -106,6 +106,16 @@ pub(super) fn tools_layer(
     }
 }
 
+/// The shapes a click can reach: none where they are not drawn
+/// ([`crate::app::Document::shapes_shown`]).
+fn shapes_on_screen(doc: &crate::app::Document) -> &[crate::evolution::Shape] {
+    if doc.shapes_shown() {
+        &doc.shapes
+    } else {
+        &[]
+    }
+}
+
 /// A drag starts at image point `at`: the Select tool grabs the shape there, the Edit
 /// tool the contour vertex.
 fn press(cx: &mut Ctx, ui: &egui::Ui, view: View, at: Point) {
@@ -114,7 +124,7 @@ fn press(cx: &mut Ctx, ui: &egui::Ui, view: View, at: Point) {
     cs.drag_from_in_image = Some(at);
     cs.drag_to_in_image = Some(at);
     if tool == Tool::Select {
-        cs.moving = hit_shape(&cx.doc.shapes, at, 6.0 / zoom as f64);
+        cs.moving = hit_shape(shapes_on_screen(cx.doc), at, 6.0 / zoom as f64);
         let moving = cs.moving;
         cx.commands.push(Command::Select(moving));
     }
@@ -236,7 +246,7 @@ fn release(
             Some(_) => None,
             // A plain click (no drag began): select what is under it.
             None => Some(Command::Select(hit_shape(
-                &cx.doc.shapes,
+                shapes_on_screen(cx.doc),
                 b,
                 6.0 / zoom as f64,
             ))),

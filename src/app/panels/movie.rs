@@ -357,6 +357,7 @@ pub(in crate::app) fn question_ui(cx: &mut Ctx, ctx: &egui::Context) {
                 ui.label(what);
                 ui.horizontal(|ui| {
                     if ui.button("Save session…").clicked() {
+                        cx.view.pending_open = None;
                         cx.send(Command::CloseQuestion);
                         cx.send(Command::SessionDialog(true));
                     }
@@ -368,6 +369,7 @@ pub(in crate::app) fn question_ui(cx: &mut Ctx, ctx: &egui::Context) {
                         }
                     }
                     if ui.button("Cancel").clicked() {
+                        cx.view.pending_open = None;
                         cx.send(Command::CloseQuestion);
                     }
                 });
