@@ -544,6 +544,8 @@ fn a_wrong_split_undone_by_hand_tracks_the_frames_after_it_again() {
         "one cell at frame 4, the mother's track goes on"
     );
     assert!(f4.divisions.is_empty(), "the division at frame 4 is undone");
+    // The edit is logged as one of movie frame 4, not of the correction run's frame 0.
+    h.get_by_label_contains("movie frame 4, by hand: ");
     assert!(tr.divisions().all(|d| d.frame > 4));
     assert_eq!(tr.lineage.get(1).unwrap().last, 4);
     assert!(tr.complete, "frames 5 to 7 tracked again");

@@ -112,13 +112,19 @@ fn event_log_ui(cx: &mut Ctx, ui: &mut egui::Ui) {
         ui.label("No topology events yet.");
     }
     let shown = cx.doc.shown;
+    // A tracked frame open for correction: its run's events are hand edits of that
+    // movie frame (the run's own frame 0 is no frame of the movie).
+    let correcting = (cx.doc.movie.as_ref()).and_then(|m| m.correcting.map(|(t, _)| t));
     let mut seek = None;
     egui::ScrollArea::vertical()
         .id_salt("log")
         .max_height(220.0)
         .show(ui, |ui| {
             for (frame, e) in events {
-                let text = format!("frame {frame}: {}", e.describe());
+                let text = match correcting {
+                    Some(t) => format!("movie frame {t}, by hand: {}", e.describe()),
+                    None => format!("frame {frame}: {}", e.describe()),
+                };
                 if ui.selectable_label(shown == frame, text).clicked() {
                     seek = Some(frame);
                 }
