@@ -822,9 +822,8 @@ impl TopoApp {
                 let frames = m.movie.frames().map_err(|e| super::AppError::Movie(e.to_string()))?;
                 for (f, image) in tr.frames.iter().zip(frames) {
                     let image = image.map_err(|e| super::AppError::Movie(e.to_string()))?;
-                    let (w, h) = (image.width, image.height);
-                    let labels = crate::image::widen::to_edges(&f.label_raster(w, h), &image);
-                    csv.push_str(&ctc::csv_rows(f.frame, &labels, w, &tr.lineage));
+                    let labels = tracked_mask(f, &image);
+                    csv.push_str(&ctc::csv_rows(f.frame, &labels, image.width, &tr.lineage));
                 }
                 Ok(Some(csv.into_bytes()))
             }
@@ -851,10 +850,14 @@ impl TopoApp {
 /// --ctc` writes its masks: up to the edges of `image`, the frame's
 /// ([`crate::image::widen::to_edges`]).
 fn track_labels(f: &TrackedFrame, image: &Field, tiff: bool) -> Result<Vec<u8>, super::AppError> {
-    let (w, h) = (image.width, image.height);
-    let labels = crate::image::widen::to_edges(&f.label_raster(w, h), image);
-    ctc::label_image(&labels, w, h, tiff)
+    ctc::label_image(&tracked_mask(f, image), image.width, image.height, tiff)
         .ok_or_else(|| super::AppError::Movie("more than 65,535 tracks".into()))
+}
+
+/// The cells of `f` as the mask `track --ctc` writes: track labels up to the edges of
+/// `image`, the frame's.
+fn tracked_mask(f: &TrackedFrame, image: &Field) -> Vec<u32> {
+    crate::image::widen::to_edges(&f.label_raster(image.width, image.height), image)
 }
 
 /// The tracking result `id` of `doc`, if it is still the one on screen.
