@@ -176,6 +176,14 @@ pub const NEIGHBOURHOOD_FINE: i32 = 2;
 /// within [`NEIGHBOURHOOD_FINE`] of its neighbourhood's shift (see
 /// [`NEIGHBOURHOOD_REACH`]). A cell is left out unless its best beats no shift of its
 /// own by [`MIN_GAIN`].
+///
+/// Two cells never lie on one place, so the cells are placed one by one, the best
+/// matched first (least cost), and a cell whose place lands more than
+/// [`PLACED_OVERLAP`] of it on cells placed before takes its best free one: a rod whose
+/// own place changed (it divided, or turned) matches its look-alike neighbour's body
+/// better, and its contour, started over the neighbour's, was dropped by the evolver
+/// and the neighbour's track ended (on a real dense colony, 99 of the 102 tracks whose
+/// contour vanished in a frame's evolution; docs/decisions.md, 2026-12-08).
 pub fn cell_shifts(
     before: &Field,
     after: &Field,
@@ -208,22 +216,24 @@ pub fn cell_shifts(
     let (b2, a2) = (block_mean(before, 2), block_mean(after, 2));
     let (b4, a4) = (block_mean(&b2, 2), block_mean(&a2, 2));
     let centre = |b: &[i32; 4]| (0.5 * (b[0] + b[2]) as f64, 0.5 * (b[1] + b[3]) as f64);
+    // Per cell: the cost of no shift of its own, and every place weighed, with its cost.
+    let mut weighed: Vec<(u32, f64, Vec<Place>)> = Vec::with_capacity(boxes.len());
     for (&l, b) in &boxes {
         let own = &samples[&l];
         let step = own.len().div_ceil(MAX_CELL_SAMPLES).max(1);
         let own: Vec<(i32, i32)> = own.iter().copied().step_by(step).collect();
         let level = Level::new(before, after, &own, 1, pad);
         let none = level.cost(s);
-        // Nearest shifts first, so of equal costs the shortest move wins: a rod matches
-        // its look-alike neighbour as well as its own new place.
-        let mut best = (none, s);
-        for &(dx, dy) in &shifts {
-            let at = (s.0 + dx, s.1 + dy);
-            let c = level.cost(at);
-            if c < best.0 {
-                best = (c, at);
-            }
-        }
+        // Nearest shifts first, so of equal costs the shortest move wins (the sort
+        // below is stable): a rod matches its look-alike neighbour as well as its own
+        // new place.
+        let mut places: Vec<Place> = shifts
+            .iter()
+            .map(|&(dx, dy)| {
+                let at = (s.0 + dx, s.1 + dy);
+                (level.cost(at), at)
+            })
+            .collect();
         // The neighbourhood's shift, coarse to fine as the field's.
         let (cx, cy) = centre(b);
         let reach = NEIGHBOURHOOD * ((b[2] - b[0]) as f64).hypot((b[3] - b[1]) as f64);
@@ -250,17 +260,77 @@ pub fn cell_shifts(
         };
         let along = level.best_around(moved, NEIGHBOURHOOD_FINE);
         // On a tie the cell moves with its neighbours: a colony flows as one.
-        let c = level.cost(along);
-        if c <= best.0 {
-            best = (c, along);
+        places.insert(0, (level.cost(along), along));
+        places.sort_by(|x, y| x.0.total_cmp(&y.0));
+        weighed.push((l, none, places));
+    }
+    // The surest matches are placed first; a cell whose best place another took goes to
+    // its best free one.
+    let sureness =
+        |(_, none, places): &(u32, f64, Vec<Place>)| places.first().map_or(*none, |p| p.0);
+    weighed.sort_by(|x, y| sureness(x).total_cmp(&sureness(y)));
+    let mut pixels: std::collections::HashMap<u32, Vec<(i32, i32)>> =
+        std::collections::HashMap::new();
+    for (i, &l) in labels.iter().enumerate() {
+        if l != 0 {
+            pixels
+                .entry(l)
+                .or_default()
+                .push((i as i32 % w, i as i32 / w));
         }
-        let e = (best.1 .0 - s.0, best.1 .1 - s.1);
-        if e != (0, 0) && best.0 < MIN_GAIN * none {
+    }
+    let mut taken = vec![0u32; labels.len()];
+    for (l, none, places) in weighed {
+        let px = &pixels[&l];
+        let step = px.len().div_ceil(MAX_CELL_SAMPLES).max(1);
+        let free = |at: (i32, i32)| {
+            let (mut on, mut n) = (0usize, 0usize);
+            for &(x, y) in px.iter().step_by(step) {
+                let (u, v) = (x + at.0, y + at.1);
+                n += 1;
+                if u >= 0 && v >= 0 && u < w && v < h && taken[(v * w + u) as usize] != 0 {
+                    on += 1;
+                }
+            }
+            on as f64 <= PLACED_OVERLAP * n as f64
+        };
+        // A place of its own only when it beats no shift clearly.
+        let trusted = |c: f64| c < MIN_GAIN * none;
+        let best = places.first().copied().filter(|p| trusted(p.0));
+        let at = match best {
+            Some((_, at)) if free(at) => at,
+            _ if free(s) && best.is_none() => s,
+            _ => {
+                let open = places.iter().find(|p| free(p.1)).copied();
+                match open {
+                    Some((c, at)) if trusted(c) || !free(s) => at,
+                    _ if free(s) => s,
+                    _ => best.map_or(s, |p| p.1),
+                }
+            }
+        };
+        for &(x, y) in px {
+            let (u, v) = (x + at.0, y + at.1);
+            if u >= 0 && v >= 0 && u < w && v < h {
+                taken[(v * w + u) as usize] = l;
+            }
+        }
+        let e = (at.0 - s.0, at.1 - s.1);
+        if e != (0, 0) {
             out.insert(l, e);
         }
     }
     out
 }
+
+/// A place weighed for a cell: its cost, and the shift.
+type Place = (f64, (i32, i32));
+
+/// The most of a cell's pixels that may land on cells already placed ([`cell_shifts`]):
+/// two cells never lie on one place, so a shift that lands a cell on another's is
+/// wrong for one of them. Neighbours pressed together and deforming overlap a little at
+/// any rigid shift.
+pub const PLACED_OVERLAP: f64 = 0.25;
 
 /// A shift `s` found at a quarter of the resolution, refined at `half` and then `full`
 /// resolution (one pixel either way at each).
@@ -568,5 +638,27 @@ mod tests {
         for k in sheet.len() as u32 + 1..=before_at.len() as u32 {
             assert_eq!(own.get(&k), None, "still rod {k}");
         }
+    }
+
+    #[test]
+    fn a_cell_whose_look_alike_neighbour_stayed_is_not_moved_onto_it() {
+        // Two rods side by side; the right one is gone from the new frame (it left the
+        // focus), the left one stayed. The right rod alone matches best on its
+        // neighbour's place (10 px left), but that place is the left rod's own.
+        let (before, labels) = rods(80, 70, &[(20, 10, 50), (30, 14, 42)]);
+        let (after, _) = rods(80, 70, &[(20, 10, 50)]);
+        let alone = Level::new(
+            &before,
+            &after,
+            &cell_samples(&labels, 80, 70, 2, [27, 14, 33, 42]),
+            1,
+            0.9,
+        );
+        let best = alone.search((0, 0), CELL_REACH).0;
+        assert_eq!(best.0, -10, "the right rod alone matches the left one");
+        assert!(alone.cost(best) < MIN_GAIN * alone.cost((0, 0)));
+        let own = cell_shifts(&before, &after, &labels, (0, 0));
+        assert_eq!(own.get(&1), None);
+        assert!(own.get(&2).is_none_or(|e| e.0 > -4), "{:?}", own.get(&2));
     }
 }
