@@ -307,9 +307,9 @@ mod tests {
             .map(|g| g.iter().map(|x| x.area).collect())
             .collect();
         assert_eq!(a, [vec![1000.0, 300.0], vec![50.0]]);
-        // In transmitted light a piece under 0.4 of its sister is a cap torn off, not a
-        // daughter; one of 0.45 is a daughter.
-        for (small, kept) in [(300.0, vec![1000.0]), (450.0, vec![1000.0, 450.0])] {
+        // In transmitted light a piece under 0.55 of its sister is a cap torn off, not a
+        // daughter; one of 0.6 is a daughter.
+        for (small, kept) in [(500.0, vec![1000.0]), (600.0, vec![1000.0, 600.0])] {
             let mut g = vec![piece(small), piece(1000.0)];
             drop_shreds(&mut g, crate::track::SISTER_SHARE);
             assert_eq!(g.iter().map(|x| x.area).collect::<Vec<_>>(), kept);

@@ -149,6 +149,17 @@ pub const ROUND_NOTCH_NARROW: f64 = 0.5;
 /// its division, 0.73, neck 0.21 widths, septum 0.60) is left to split by itself.
 pub const ROUND_SHARE: f64 = 0.8;
 
+/// Rods: the smaller lobe's least area, as a share of the larger. A rod divides in
+/// the middle (the curated masks of a real E. coli movie: sisters 0.70–0.98 of each
+/// other in their first frame), while in a dense colony a neighbour's end pressed into
+/// a rod's side makes a notch a fifth to a half along it. On a real dense colony
+/// (divbac26) the divisions at the reference's frame had sisters of 0.72 or more (10th
+/// percentile), those of no reference division 0.50 (median). Requiring half here and
+/// sisters of [`crate::track::SISTER_SHARE`] took TRA / CHOTA / division F1 there from
+/// 0.901 / 0.736 / 0.358 to 0.907 / 0.765 / 0.406, and HeLa's division F1 from 0.623 to
+/// 0.640 (docs/decisions.md, 2026-12-08).
+pub const ROD_SHARE: f64 = 0.5;
+
 /// How far (pixels) a neck's ends must be from the frame's edge.
 pub const EDGE_MARGIN: f64 = 3.0;
 
@@ -469,6 +480,7 @@ impl Neck {
         d < NARROW + SEPTUM_WIDENS * line + NOTCH_WIDENS * turn
             && (d <= WIDE_NECK || line >= WIDE_NECK_LINE)
             && !waist
+            && self.share >= ROD_SHARE
     }
 }
 
@@ -771,6 +783,26 @@ pub(crate) mod tests {
             "the caps meet over half the width"
         );
         assert!(neck_cut(&ring, &img).is_some());
+    }
+
+    #[test]
+    fn a_notch_a_third_along_a_rod_is_no_division() {
+        // The same caps meeting as above, the one rod over twice the other's length: a
+        // neighbour's end pressed into a rod's side, not sisters (ROD_SHARE).
+        let img = flat();
+        let sisters = union_of(
+            &rod(Point::new(10.0, 20.0), Point::new(22.5, 20.0), 4.5),
+            &rod(Point::new(30.3, 20.0), Point::new(42.8, 20.0), 4.5),
+        );
+        assert!(neck_cut(&sisters, &img).is_some());
+        let unequal = union_of(
+            &rod(Point::new(16.0, 20.0), Point::new(22.5, 20.0), 4.5),
+            &rod(Point::new(30.3, 20.0), Point::new(56.0, 20.0), 4.5),
+        );
+        let neck = measure(&unequal, &img).expect("a neck");
+        assert!(neck.share < ROD_SHARE && neck.rods(), "{neck:?}");
+        assert!(neck_cut(&unequal, &img).is_none());
+        assert!(Neck { share: 0.9, ..neck }.cut());
     }
 
     #[test]
