@@ -264,11 +264,10 @@ pub fn cell_shifts(
         places.sort_by(|x, y| x.0.total_cmp(&y.0));
         weighed.push((l, none, places));
     }
-    // The surest matches are placed first; a cell whose best place another took goes to
-    // its best free one.
-    let sureness =
-        |(_, none, places): &(u32, f64, Vec<Place>)| places.first().map_or(*none, |p| p.0);
-    weighed.sort_by(|x, y| sureness(x).total_cmp(&sureness(y)));
+    // The best matched (least cost) are placed first; a cell whose place another took
+    // goes to its best free one.
+    let least = |(_, none, places): &(u32, f64, Vec<Place>)| places.first().map_or(*none, |p| p.0);
+    weighed.sort_by(|x, y| least(x).total_cmp(&least(y)));
     let mut pixels: std::collections::HashMap<u32, Vec<(i32, i32)>> =
         std::collections::HashMap::new();
     for (i, &l) in labels.iter().enumerate() {
@@ -294,20 +293,19 @@ pub fn cell_shifts(
             }
             on as f64 <= PLACED_OVERLAP * n as f64
         };
-        // A place of its own only when it beats no shift clearly.
+        // Its best place when that beats no shift clearly and is free; else no shift
+        // when that is free and no free place beats it clearly; else its best free
+        // place; with none free, where it would go alone.
         let trusted = |c: f64| c < MIN_GAIN * none;
         let best = places.first().copied().filter(|p| trusted(p.0));
-        let at = match best {
-            Some((_, at)) if free(at) => at,
-            _ if free(s) && best.is_none() => s,
-            _ => {
-                let open = places.iter().find(|p| free(p.1)).copied();
-                match open {
-                    Some((c, at)) if trusted(c) || !free(s) => at,
-                    _ if free(s) => s,
-                    _ => best.map_or(s, |p| p.1),
-                }
-            }
+        let at = match (best, free(s)) {
+            (Some((_, at)), _) if free(at) => at,
+            (None, true) => s,
+            (_, stays) => match places.iter().find(|p| free(p.1)) {
+                Some(&(c, at)) if trusted(c) || !stays => at,
+                _ if stays => s,
+                _ => best.map_or(s, |p| p.1),
+            },
         };
         for &(x, y) in px {
             let (u, v) = (x + at.0, y + at.1);
