@@ -198,11 +198,14 @@ pub fn cell_shifts(
     {
         return out;
     }
-    // Each cell's box.
+    // Each cell's box, and its pixels (where it lands when placed).
     let mut boxes: std::collections::BTreeMap<u32, [i32; 4]> = std::collections::BTreeMap::new();
+    let mut pixels: std::collections::HashMap<u32, Vec<(i32, i32)>> =
+        std::collections::HashMap::new();
     for (i, &l) in labels.iter().enumerate() {
         if l != 0 {
             let (x, y) = (i as i32 % w, i as i32 / w);
+            pixels.entry(l).or_default().push((x, y));
             let b = boxes.entry(l).or_insert([x, y, x, y]);
             *b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
         }
@@ -268,16 +271,6 @@ pub fn cell_shifts(
     // goes to its best free one.
     let least = |(_, none, places): &(u32, f64, Vec<Place>)| places.first().map_or(*none, |p| p.0);
     weighed.sort_by(|x, y| least(x).total_cmp(&least(y)));
-    let mut pixels: std::collections::HashMap<u32, Vec<(i32, i32)>> =
-        std::collections::HashMap::new();
-    for (i, &l) in labels.iter().enumerate() {
-        if l != 0 {
-            pixels
-                .entry(l)
-                .or_default()
-                .push((i as i32 % w, i as i32 / w));
-        }
-    }
     let mut taken = vec![0u32; labels.len()];
     for (l, none, places) in weighed {
         let px = &pixels[&l];
